@@ -1,0 +1,347 @@
+// Copyright (c) 2026 The CGAL Wavejets project.
+// All rights reserved.
+//
+// This file is part of the Wavejets package (https://github.com/cgal-wavejets/wavejets).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : The CGAL Wavejets developers
+
+#ifndef CGAL_WAVEJET_FITTING_H
+#define CGAL_WAVEJET_FITTING_H
+
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/Kernel_traits.h>
+#include <CGAL/number_utils.h>
+#include <CGAL/assertions.h>
+
+#include <CGAL/Wavejets/Fitting_options.h>
+#include <CGAL/Wavejets/internal/basis.h>
+#include <CGAL/Wavejets/internal/differential_quantities.h>
+#include <CGAL/Wavejets/internal/fitting_core.h>
+
+#include <CGAL/disable_warnings.h>
+
+#include <complex>
+#include <cstddef>
+#include <iostream>
+#include <iterator>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+namespace CGAL {
+
+/*!
+\ingroup PkgWavejetsRef
+
+Fits a Wavejet, the local height field z(r, theta) = sum_{k <= K} sum_{|n| <= k, n = k mod 2}
+f_{k,n} r^k e^{i n theta} over the tangent plane, to a point and its neighbors
+(Béarzi, Digne, Chaine, Eurographics 2018). The interface mirrors `Monge_via_jet_fitting`:
+the first point of the range is the point where the Wavejet is computed, the others are its
+neighbors, and the result is a `Wavejet_form`.
+
+The fit follows `WAVEJETS_MATH.md`: PCA frame (or a seed normal), coordinates rescaled by the
+neighborhood radius Rf, least squares by Householder QR in the real basis r^k cos(n theta),
+r^k sin(n theta), adaptive order (the order is lowered until there are at least
+`neighbors_per_coefficient * (K+1)(K+2)/2` points and the system has full rank), optional
+Tukey IRLS, and re-fits in the corrected tangent plane (keeping the frame of smallest
+|f_{1,1}|). A K-Wavejet spans the same polynomials as a degree-K jet, so with
+`correction_iterations == 0` the curvatures equal those of `Monge_via_jet_fitting` on the same points.
+
+\tparam DataKernel kernel of the input points and of the `Wavejet_form` (e.g. `Epick`).
+\tparam LocalKernel kernel with `double` number type used for `pca_basis()`; default `Simple_cartesian<double>`.
+
+One instance must not be used by two threads at the same time; it keeps scratch memory between
+calls, so reusing one instance for many points avoids allocations.
+*/
+template <class DataKernel, class LocalKernel = Simple_cartesian<double> >
+class Wavejet_fitting
+{
+public:
+  typedef DataKernel Data_kernel;
+  typedef LocalKernel Local_kernel;
+  typedef typename Local_kernel::FT FT;
+  typedef typename Local_kernel::Point_3 Point_3;
+  typedef typename Local_kernel::Vector_3 Vector_3;
+  typedef typename Data_kernel::FT DFT;
+
+  static_assert(std::is_convertible<double, FT>::value, "Local_kernel::FT must be constructible from double");
+
+  /*!
+  The result of a fit: the Wavejet's frame, coefficients (world units) and differential quantities.
+  Number types come from `DataKernel`. Default-constructed or failed forms have `is_valid() == false`;
+  then `origin()` is the query point, `order()` is 0, and every other quantity is zero.
+  */
+  class Wavejet_form
+  {
+  public:
+    typedef typename Data_kernel::FT FT;
+    typedef typename Data_kernel::Point_3 Point_3;
+    typedef typename Data_kernel::Vector_3 Vector_3;
+    typedef std::complex<double> Complex;
+
+    Wavejet_form()
+      : m_origin(ORIGIN), m_d1(NULL_VECTOR), m_d2(NULL_VECTOR), m_normal(NULL_VECTOR),
+        m_u(NULL_VECTOR), m_v(NULL_VECTOR), m_frame_normal(NULL_VECTOR)
+    {}
+
+    /// \name Status
+    /// @{
+    Wavejets::Fit_status status() const { return m_status; }
+    bool is_valid() const { return m_status == Wavejets::Fit_status::SUCCESS; }
+    /// Order K actually fitted (after adaptive reduction); 0 if the fit failed.
+    std::size_t order() const { return m_order; }
+    /// Neighborhood radius Rf used for the rescaling (world units).
+    FT radius() const { return FT(m_radius); }
+    /// Number of points of the fit (query point included).
+    std::size_t number_of_points() const { return m_number_of_points; }
+    /// Number of accepted tangent-plane re-fits.
+    std::size_t number_of_corrections() const { return m_corrections; }
+    /// |f_{1,1}| left in the final frame (0 in the exact tangent plane).
+    FT tangent_plane_residual() const { return FT(m_final_tilt); }
+    /// @}
+
+    /// \name Geometry (data kernel types)
+    /// @{
+    /// Point of the Wavejet surface above the query point p: p + f_{0,0} n (n the frame normal).
+    Point_3 origin() const { return m_origin; }
+    Point_3& origin() { return m_origin; }
+    /// Unit normal of the Wavejet surface at `origin()` (the frame normal tilted by the residual f_{1,+-1}).
+    Vector_3 normal_direction() const { return m_normal; }
+    Vector_3& normal_direction() { return m_normal; }
+    /// First axis u of the final tangent frame: theta = 0 along u.
+    Vector_3 first_tangent_direction() const { return m_u; }
+    Vector_3& first_tangent_direction() { return m_u; }
+    /// Second axis v = n x u of the final tangent frame.
+    Vector_3 second_tangent_direction() const { return m_v; }
+    Vector_3& second_tangent_direction() { return m_v; }
+    /// Third axis n of the final tangent frame, along which heights (and coefficients) are measured.
+    Vector_3 frame_normal_direction() const { return m_frame_normal; }
+    Vector_3& frame_normal_direction() { return m_frame_normal; }
+    /// Direction of the maximal principal curvature (unit, tangent; (d1, d2, normal) is direct).
+    Vector_3 maximal_principal_direction() const { return m_d1; }
+    Vector_3& maximal_principal_direction() { return m_d1; }
+    /// Direction of the minimal principal curvature.
+    Vector_3 minimal_principal_direction() const { return m_d2; }
+    Vector_3& minimal_principal_direction() { return m_d2; }
+    /// @}
+
+    /// \name Coefficients (world units, final frame)
+    /// @{
+    /// f_{k,n}: z = sum f_{k,n} r^k e^{i n theta}, r and z in the input length unit, theta from
+    /// `first_tangent_direction()`. Zero for any (k, n) that is not a coefficient of this Wavejet
+    /// (|n| > k, parity mismatch, or k > order()).
+    Complex coefficient(int k, int n) const
+    {
+      if(!is_valid() || !Wavejets::internal::is_wavejet_index(k, n) || std::size_t(k) > m_order)
+        return Complex(0., 0.);
+      return Wavejets::internal::complex_coefficient(m_coefficients.data(), k, n);
+    }
+    /// The (K+1)(K+2)/2 real unknowns, world units: for k = 0..K, order k starts at k(k+1)/2 and holds
+    /// f_{k,0} (k even) then alpha_{k,n}, beta_{k,n} for n = 1 or 2, ..., k, with
+    /// f_{k,n} = (alpha_{k,n} - i beta_{k,n}) / 2 and f_{k,-n} = conj(f_{k,n}).
+    const std::vector<double>& coefficients() const { return m_coefficients; }
+    std::vector<double>& coefficients() { return m_coefficients; }
+    /// Enclosed-area coefficient a_n(s) = sum_{k >= |n|, k = n mod 2} f_{k,n} s^{k+2}/(k+2) (length^3),
+    /// all terms included (the filters drop the k = 0 and k = 1 terms themselves).
+    Complex enclosed_area_coefficient(int n, double s) const
+    {
+      if(!is_valid() || std::size_t(std::abs(n)) > m_order)
+        return Complex(0., 0.);
+      return Wavejets::internal::enclosed_area(m_coefficients.data(), m_order, n, s);
+    }
+    /// a_n(Rf).
+    Complex enclosed_area_coefficient(int n) const { return enclosed_area_coefficient(n, m_radius); }
+    /// @}
+
+    /// \name Curvature (signs relative to `normal_direction()`: bending toward it is positive)
+    /// @{
+    FT mean_curvature() const { return FT(m_mean); }
+    FT gaussian_curvature() const { return FT(m_gaussian); }
+    /// `i == 0`: maximal, `i == 1`: minimal principal curvature.
+    FT principal_curvatures(std::size_t i) const
+    {
+      CGAL_precondition(i < 2);
+      return FT(i == 0 ? m_k1 : m_k2);
+    }
+    /// @}
+
+    /// Flips the orientation if `given_normal` points to the other side of `normal_direction()`:
+    /// the normal and frame normal change sign, v changes sign (the frame stays direct, theta -> -theta),
+    /// f_{k,n} becomes -conj(f_{k,n}), H and the principal curvatures change sign and k1, k2 (with
+    /// their directions) swap. `origin()` does not change.
+    void comply_wrt_given_normal(const Vector_3& given_normal)
+    {
+      if(!is_valid() || given_normal * m_normal >= FT(0))
+        return;
+      m_normal = -m_normal;
+      m_frame_normal = -m_frame_normal;
+      m_v = -m_v;
+      for(std::size_t k = 0; k <= m_order; ++k)
+      {
+        const std::size_t o = Wavejets::internal::order_offset(k);
+        if(k % 2 == 0) m_coefficients[o] = -m_coefficients[o];
+        for(std::size_t n = (k % 2 == 0 ? 2 : 1); n <= k; n += 2)
+          m_coefficients[o + n - 1] = -m_coefficients[o + n - 1]; // alpha -> -alpha, beta unchanged
+      }
+      m_mean = -m_mean;
+      const double k1 = m_k1;
+      m_k1 = -m_k2;
+      m_k2 = -k1;
+      std::swap(m_d1, m_d2);
+    }
+
+    /// Writes every quantity, one per line.
+    std::ostream& dump_verbose(std::ostream& os) const
+    {
+      os << "Wavejet form: " << Wavejets::fit_status_name(m_status) << "\n";
+      os << "  order: " << m_order << "  points: " << m_number_of_points << "  radius Rf: " << m_radius
+         << "  corrections: " << m_corrections << "  |f11| residual: " << m_final_tilt << "\n";
+      os << "  origin: " << m_origin << "\n  normal: " << m_normal << "\n";
+      os << "  frame u: " << m_u << "\n  frame v: " << m_v << "\n  frame n: " << m_frame_normal << "\n";
+      os << "  mean curvature: " << m_mean << "  gaussian curvature: " << m_gaussian << "\n";
+      os << "  k1: " << m_k1 << "  d1: " << m_d1 << "\n  k2: " << m_k2 << "  d2: " << m_d2 << "\n";
+      for(std::size_t k = 0; k <= m_order; ++k)
+      {
+        os << "  order " << k << ":";
+        for(int n = -int(k); n <= int(k); n += 2)
+          os << " f(" << k << "," << n << ")=" << coefficient(int(k), n);
+        os << "\n";
+      }
+      return os;
+    }
+
+    friend std::ostream& operator<<(std::ostream& os, const Wavejet_form& f) { return f.dump_verbose(os); }
+
+  private:
+    friend class Wavejet_fitting;
+    Wavejets::Fit_status m_status = Wavejets::Fit_status::TOO_FEW_POINTS;
+    std::size_t m_order = 0, m_number_of_points = 0, m_corrections = 0;
+    double m_radius = 0., m_final_tilt = 0.;
+    Point_3 m_origin;
+    Vector_3 m_d1, m_d2, m_normal, m_u, m_v, m_frame_normal;
+    std::vector<double> m_coefficients;
+    double m_mean = 0., m_gaussian = 0., m_k1 = 0., m_k2 = 0.;
+  };
+
+  /// Creates a fitting object with the given options.
+  explicit Wavejet_fitting(const Wavejets::Fitting_options& options = Wavejets::Fitting_options())
+    : m_options(options)
+  {}
+
+  /// The options used by the next fits.
+  const Wavejets::Fitting_options& options() const { return m_options; }
+  Wavejets::Fitting_options& options() { return m_options; }
+
+  /*!
+  Fits a Wavejet of order `order` (lowered if the points cannot support it) at `*begin`.
+  \tparam InputIterator random-access or forward iterator with value type `Data_kernel::Point_3`.
+  \pre `order >= 1`. A range too small or degenerate gives a form with `is_valid() == false`.
+  */
+  template <class InputIterator>
+  Wavejet_form operator()(InputIterator begin, InputIterator end, std::size_t order)
+  {
+    return fit(begin, end, order, nullptr);
+  }
+
+  /*!
+  Same as above, with a normal at `*begin` that orients the frame (n . normal >= 0), or also seeds
+  the first fit's frame when `options().normal_use == Wavejets::Normal_use::SEED_FRAME`.
+  */
+  template <class InputIterator>
+  Wavejet_form operator()(InputIterator begin, InputIterator end, std::size_t order,
+                          const typename Data_kernel::Vector_3& normal)
+  {
+    const Eigen::Vector3d hint(to_double(normal.x()), to_double(normal.y()), to_double(normal.z()));
+    return fit(begin, end, order, &hint);
+  }
+
+  /// Condition number (ratio of extreme singular values) of the kept fit's rescaled least-squares
+  /// system; 0 before a successful fit or when `options().compute_condition_number` is false.
+  FT condition_number() const { return FT(m_result.condition_number); }
+
+  /// PCA of the last neighborhood: eigenvalue (world units squared) and unit eigenvector;
+  /// `i == 0` largest, `i == 2` smallest (the PCA normal).
+  std::pair<FT, Vector_3> pca_basis(std::size_t i) const
+  {
+    CGAL_precondition(i < 3);
+    const Eigen::Vector3d e = m_result.pca_vectors.col(int(i));
+    return std::make_pair(FT(m_result.pca_values(int(i))), Vector_3(e.x(), e.y(), e.z()));
+  }
+
+private:
+  template <class InputIterator>
+  Wavejet_form fit(InputIterator begin, InputIterator end, std::size_t order, const Eigen::Vector3d* hint)
+  {
+    CGAL_precondition(order >= 1);
+    Wavejet_form form;
+    m_offsets.clear();
+    if(begin == end)
+    {
+      form.m_status = Wavejets::Fit_status::TOO_FEW_POINTS;
+      return form;
+    }
+    const typename Data_kernel::Point_3& p = *begin;
+    form.m_origin = p;
+    for(InputIterator it = begin; it != end; ++it)
+    {
+      const typename Data_kernel::Point_3& q = *it;
+      m_offsets.emplace_back(to_double(q.x() - p.x()), to_double(q.y() - p.y()), to_double(q.z() - p.z()));
+    }
+    if(!(is_finite(to_double(p.x())) && is_finite(to_double(p.y())) && is_finite(to_double(p.z()))))
+    {
+      form.m_status = Wavejets::Fit_status::NON_FINITE_INPUT;
+      return form;
+    }
+    m_fitter.fit(m_offsets.data(), m_offsets.size(), order, m_options, hint, m_result);
+    form.m_status = m_result.status;
+    form.m_number_of_points = m_result.number_of_points;
+    if(!m_result.success())
+      return form;
+
+    const Wavejets::internal::Fit_result& r = m_result;
+    typedef typename Data_kernel::Vector_3 DVector;
+    auto to_vector = [](const Eigen::Vector3d& e) { return DVector(e.x(), e.y(), e.z()); };
+    const std::size_t B = Wavejets::internal::number_of_coefficients(r.order);
+    const double* c = m_fitter.coefficients();
+    form.m_order = r.order;
+    form.m_radius = r.radius;
+    form.m_corrections = r.corrections;
+    form.m_final_tilt = r.final_tilt;
+    form.m_coefficients.resize(B);
+    double scale = r.radius; // Rf^{1-k}
+    for(std::size_t k = 0; k <= r.order; ++k, scale /= r.radius)
+      for(std::size_t j = 0; j <= k; ++j)
+        form.m_coefficients[Wavejets::internal::order_offset(k) + j] = c[Wavejets::internal::order_offset(k) + j] * scale;
+
+    const double f00 = form.m_coefficients[0];
+    form.m_origin = p + to_vector(r.frame.n * f00);
+    form.m_u = to_vector(r.frame.u);
+    form.m_v = to_vector(r.frame.v);
+    form.m_frame_normal = to_vector(r.frame.n);
+    const double fx = r.order >= 1 ? form.m_coefficients[1] : 0., fy = r.order >= 1 ? form.m_coefficients[2] : 0.;
+    form.m_normal = to_vector((r.frame.n - fx * r.frame.u - fy * r.frame.v).normalized());
+
+    Wavejets::internal::Curvature_info ci = Wavejets::internal::graph_curvature(
+      r.curvature_derivatives, r.curvature_frame.u, r.curvature_frame.v, r.curvature_frame.n);
+    form.m_mean = ci.mean;
+    form.m_gaussian = ci.gaussian;
+    form.m_k1 = ci.k1;
+    form.m_k2 = ci.k2;
+    form.m_d1 = to_vector(ci.d1);
+    form.m_d2 = to_vector(ci.d2);
+    return form;
+  }
+
+  Wavejets::Fitting_options m_options;
+  Wavejets::internal::Fitter m_fitter;
+  Wavejets::internal::Fit_result m_result;
+  std::vector<Eigen::Vector3d> m_offsets;
+};
+
+} // namespace CGAL
+
+#include <CGAL/enable_warnings.h>
+
+#endif // CGAL_WAVEJET_FITTING_H

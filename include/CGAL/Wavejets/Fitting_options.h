@@ -1,0 +1,87 @@
+// Copyright (c) 2026 The CGAL Wavejets project.
+// All rights reserved.
+//
+// This file is part of the Wavejets package (https://github.com/cgal-wavejets/wavejets).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : The CGAL Wavejets developers
+
+#ifndef CGAL_WAVEJETS_FITTING_OPTIONS_H
+#define CGAL_WAVEJETS_FITTING_OPTIONS_H
+
+#include <cstddef>
+
+namespace CGAL {
+namespace Wavejets {
+
+/// \ingroup PkgWavejetsRef
+/// Outcome of one Wavejet fit.
+enum class Fit_status
+{
+  SUCCESS = 0,           ///< a Wavejet of order >= the minimum order was fitted
+  TOO_FEW_POINTS,        ///< fewer points than `neighbors_per_coefficient * (K+1)(K+2)/2` even at the minimum order
+  DEGENERATE_NEIGHBORHOOD, ///< coincident, collinear or otherwise rank-deficient points, even at the minimum order
+  NON_FINITE_INPUT       ///< a coordinate (or the seed normal) is NaN or infinite
+};
+
+/// \ingroup PkgWavejetsRef
+/// Human-readable name of a `Fit_status`.
+inline const char* fit_status_name(Fit_status s)
+{
+  switch(s) {
+    case Fit_status::SUCCESS: return "success";
+    case Fit_status::TOO_FEW_POINTS: return "too few points";
+    case Fit_status::DEGENERATE_NEIGHBORHOOD: return "degenerate neighborhood";
+    case Fit_status::NON_FINITE_INPUT: return "non-finite input";
+  }
+  return "unknown";
+}
+
+/// \ingroup PkgWavejetsRef
+/// Which fit the differential quantities (curvatures, principal directions) are read from.
+///
+/// The curvature formulas of a graph are exact in any parameterization plane, so both are valid.
+/// `INITIAL_FRAME` (default) reads them from the first fit, in the PCA frame (or the seed frame):
+/// with a PCA frame this is the same least-squares problem as `CGAL::Monge_via_jet_fitting`, and it
+/// was measured more accurate than the corrected frame on noise-free analytic surfaces.
+/// `TANGENT_FRAME` reads them from the fit in the final, corrected tangent frame.
+enum class Curvature_frame { INITIAL_FRAME, TANGENT_FRAME };
+
+/// \ingroup PkgWavejetsRef
+/// How a normal passed to `Wavejet_fitting::operator()` is used.
+enum class Normal_use
+{
+  ORIENT,    ///< the frame comes from PCA; the normal only orients it (n . normal >= 0)
+  SEED_FRAME ///< the first fit is done in the plane orthogonal to the normal (which also orients it)
+};
+
+/// \ingroup PkgWavejetsRef
+/// Options of `Wavejet_fitting` that `CGAL::Monge_via_jet_fitting` has no equivalent for.
+/// The point-set functions set them from named parameters.
+struct Fitting_options
+{
+  /// Adaptive order: the order K is lowered until the number of points L satisfies
+  /// `L >= neighbors_per_coefficient * (K+1)(K+2)/2` (the factor beta of the paper).
+  double neighbors_per_coefficient = 1.1;
+  /// Lowest order accepted by the adaptive order before the fit fails (clamped to the requested order).
+  std::size_t minimum_order = 2;
+  /// Maximum number of re-fits in the corrected tangent plane (0 switches the correction off).
+  std::size_t correction_iterations = 2;
+  /// Number of iteratively reweighted least-squares passes (Tukey biweight; 0 = plain least squares).
+  std::size_t robust_iterations = 0;
+  /// Neighborhood radius Rf used to rescale the coordinates; 0 means the distance from the query
+  /// point to its farthest neighbor.
+  double neighborhood_radius = 0.;
+  /// Fit whose frame the curvatures are read from.
+  Curvature_frame curvature_frame = Curvature_frame::INITIAL_FRAME;
+  /// Role of a given normal.
+  Normal_use normal_use = Normal_use::ORIENT;
+  /// Compute `condition_number()` (an SVD of the triangular factor; costs a little).
+  bool compute_condition_number = true;
+};
+
+} // namespace Wavejets
+} // namespace CGAL
+
+#endif // CGAL_WAVEJETS_FITTING_OPTIONS_H

@@ -1,0 +1,115 @@
+// Copyright (c) 2026 The CGAL Wavejets project.
+// All rights reserved.
+//
+// This file is part of the Wavejets package (https://github.com/cgal-wavejets/wavejets).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : The CGAL Wavejets developers
+
+#ifndef CGAL_WAVEJETS_INTERNAL_BASIS_H
+#define CGAL_WAVEJETS_INTERNAL_BASIS_H
+
+// The real Wavejet basis r^k cos(n theta), r^k sin(n theta) (n <= k, n = k mod 2), its
+// column layout, and the conversions between real unknowns and complex coefficients f_{k,n}.
+//
+// Column layout (also the documented layout of Wavejet_form::coefficients()): orders k = 0..K
+// in turn, order k occupying the k+1 columns starting at k(k+1)/2:
+//   k even: f_{k,0}, alpha_{k,2}, beta_{k,2}, ..., alpha_{k,k}, beta_{k,k}
+//   k odd :          alpha_{k,1}, beta_{k,1}, ..., alpha_{k,k}, beta_{k,k}
+// i.e. alpha_{k,n} at k(k+1)/2 + n - 1 and beta_{k,n} at k(k+1)/2 + n (n > 0), f_{k,0} at k(k+1)/2,
+// with f_{k,n} = (alpha - i beta)/2 and f_{k,-n} = (alpha + i beta)/2.
+
+#include <complex>
+#include <cstddef>
+#include <cstdlib>
+
+namespace CGAL {
+namespace Wavejets {
+namespace internal {
+
+/// Number of real unknowns of a K-Wavejet: (K+1)(K+2)/2.
+inline std::size_t number_of_coefficients(std::size_t order)
+{
+  return (order + 1) * (order + 2) / 2;
+}
+
+/// First column of order k.
+inline std::size_t order_offset(std::size_t k) { return k * (k + 1) / 2; }
+
+/// True if (k, n) is a coefficient of a Wavejet (|n| <= k and n = k mod 2).
+inline bool is_wavejet_index(int k, int n)
+{
+  return k >= 0 && std::abs(n) <= k && ((k - n) % 2 == 0);
+}
+
+/// Complex coefficient f_{k,n} from the real unknowns `c` (any unit system).
+/// Precondition: is_wavejet_index(k, n).
+inline std::complex<double> complex_coefficient(const double* c, int k, int n)
+{
+  const std::size_t o = order_offset(std::size_t(k));
+  if(n == 0)
+    return std::complex<double>(c[o], 0.);
+  const std::size_t m = std::size_t(std::abs(n));
+  const double alpha = c[o + m - 1], beta = c[o + m];
+  return n > 0 ? std::complex<double>(alpha / 2, -beta / 2) : std::complex<double>(alpha / 2, beta / 2);
+}
+
+/// Writes the B = (K+1)(K+2)/2 basis values at (x, y) into row[0..B-1], in the column layout
+/// above, by recurrence: r^k e^{i n theta} = (x^2+y^2) r^{k-2} e^{i n theta} for n <= k-2, and
+/// (x + i y)^k for n = k. No pow, atan2 or sqrt.
+inline void evaluate_basis(double x, double y, std::size_t order, double* row)
+{
+  const double rho = x * x + y * y;
+  double wr = 1., wi = 0.; // (x + i y)^k
+  row[0] = 1.;
+  for(std::size_t k = 1; k <= order; ++k)
+  {
+    const double nr = wr * x - wi * y;
+    wi = wr * y + wi * x;
+    wr = nr;
+    const std::size_t o = order_offset(k);
+    if(k >= 2)
+    {
+      const std::size_t o2 = order_offset(k - 2);
+      for(std::size_t j = 0; j + 1 < k; ++j)
+        row[o + j] = rho * row[o2 + j];
+    }
+    row[o + k - 1] = wr;
+    row[o + k] = wi;
+  }
+}
+
+/// Height of the Wavejet with real unknowns `c` at (x, y).
+inline double evaluate_height(const double* c, std::size_t order, double x, double y, double* scratch_row)
+{
+  evaluate_basis(x, y, order, scratch_row);
+  double z = 0.;
+  for(std::size_t b = 0; b < number_of_coefficients(order); ++b)
+    z += c[b] * scratch_row[b];
+  return z;
+}
+
+/// Enclosed-area coefficient a_n(s) = sum_{k >= max(|n|, k_min), k = n mod 2} f_{k,n} s^{k+2}/(k+2),
+/// in the unit system of `c` and `s`. `k_min` lets the filters skip the k = 0 (offset) or k = 1 (tilt) term.
+inline std::complex<double> enclosed_area(const double* c, std::size_t order, int n, double s, int k_min = 0)
+{
+  std::complex<double> a(0., 0.);
+  const int K = int(order);
+  int k = std::abs(n);
+  while(k < k_min) k += 2;
+  double sk2 = 1.; // s^{k+2}
+  for(int j = 0; j < k + 2; ++j) sk2 *= s;
+  for(; k <= K; k += 2)
+  {
+    a += complex_coefficient(c, k, n) * (sk2 / double(k + 2));
+    sk2 *= s * s;
+  }
+  return a;
+}
+
+} // namespace internal
+} // namespace Wavejets
+} // namespace CGAL
+
+#endif // CGAL_WAVEJETS_INTERNAL_BASIS_H

@@ -1,0 +1,91 @@
+// Copyright (c) 2026 The CGAL Wavejets project.
+// All rights reserved.
+//
+// This file is part of the Wavejets package (https://github.com/cgal-wavejets/wavejets).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : The CGAL Wavejets developers
+
+#ifndef CGAL_WAVEJETS_INTERNAL_DIFFERENTIAL_QUANTITIES_H
+#define CGAL_WAVEJETS_INTERNAL_DIFFERENTIAL_QUANTITIES_H
+
+// Curvatures and principal directions of a height field z = f(x, y) over a frame (u, v, n),
+// from its derivatives at the origin (exact graph formulas, valid in any frame; WAVEJETS_MATH.md §3).
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <cmath>
+
+namespace CGAL {
+namespace Wavejets {
+namespace internal {
+
+/// First and second derivatives of the height at the origin of the parameterization plane.
+struct Height_derivatives
+{
+  double fx = 0., fy = 0., fxx = 0., fxy = 0., fyy = 0.;
+};
+
+/// Reads the derivatives from the real unknowns (fx = alpha_{1,1}, fy = beta_{1,1},
+/// fxx = 2(f_{2,0} + alpha_{2,2}), fyy = 2(f_{2,0} - alpha_{2,2}), fxy = 2 beta_{2,2}).
+/// `inverse_radius` converts second derivatives from rescaled to world units (1/Rf).
+inline Height_derivatives height_derivatives(const double* c, std::size_t order, double inverse_radius)
+{
+  Height_derivatives d;
+  if(order >= 1) { d.fx = c[1]; d.fy = c[2]; }
+  if(order >= 2)
+  {
+    d.fxx = 2. * (c[3] + c[4]) * inverse_radius;
+    d.fyy = 2. * (c[3] - c[4]) * inverse_radius;
+    d.fxy = 2. * c[5] * inverse_radius;
+  }
+  return d;
+}
+
+/// Curvature information at a point, signs relative to the frame normal n
+/// (a surface bending toward +n has H > 0).
+struct Curvature_info
+{
+  double mean = 0., gaussian = 0., k1 = 0., k2 = 0.; // k1 >= k2
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();   // unit normal of the graph, n . normal > 0
+  Eigen::Vector3d d1 = Eigen::Vector3d::Zero(), d2 = Eigen::Vector3d::Zero(); // (d1, d2, normal) direct
+};
+
+/// Curvature of the graph z = f(x, y) over the orthonormal direct frame (u, v, n).
+inline Curvature_info graph_curvature(const Height_derivatives& d,
+                                      const Eigen::Vector3d& u, const Eigen::Vector3d& v,
+                                      const Eigen::Vector3d& n)
+{
+  Curvature_info ci;
+  const double g = 1. + d.fx * d.fx + d.fy * d.fy;
+  const double sg = std::sqrt(g);
+  ci.gaussian = (d.fxx * d.fyy - d.fxy * d.fxy) / (g * g);
+  ci.mean = ((1. + d.fy * d.fy) * d.fxx + (1. + d.fx * d.fx) * d.fyy - 2. * d.fx * d.fy * d.fxy) / (2. * g * sg);
+  const double disc = std::sqrt((std::max)(ci.mean * ci.mean - ci.gaussian, 0.));
+  ci.k1 = ci.mean + disc;
+  ci.k2 = ci.mean - disc;
+  ci.normal = (n - d.fx * u - d.fy * v) / sg;
+
+  // Shape operator: II a = k I a with I = [[1+fx^2, fx fy], [fx fy, 1+fy^2]], II = Hessian / sqrt(g).
+  const double E = 1. + d.fx * d.fx, F = d.fx * d.fy, G = 1. + d.fy * d.fy;
+  const double L = d.fxx / sg, M = d.fxy / sg, N = d.fyy / sg;
+  // (II - k1 I) a = 0: take the larger of the two rows' orthogonal vectors.
+  const double r0a = L - ci.k1 * E, r0b = M - ci.k1 * F;
+  const double r1a = M - ci.k1 * F, r1b = N - ci.k1 * G;
+  double ax, ay;
+  if(r0a * r0a + r0b * r0b >= r1a * r1a + r1b * r1b) { ax = -r0b; ay = r0a; }
+  else                                                { ax = -r1b; ay = r1a; }
+  if(ax * ax + ay * ay <= 1e-300) { ax = 1.; ay = 0.; } // umbilic: any direction is principal
+  Eigen::Vector3d t = ax * (u + d.fx * n) + ay * (v + d.fy * n);
+  ci.d1 = t.normalized();
+  ci.d2 = ci.normal.cross(ci.d1).normalized();
+  return ci;
+}
+
+} // namespace internal
+} // namespace Wavejets
+} // namespace CGAL
+
+#endif // CGAL_WAVEJETS_INTERNAL_DIFFERENTIAL_QUANTITIES_H

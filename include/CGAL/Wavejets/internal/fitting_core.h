@@ -1,0 +1,333 @@
+// Copyright (c) 2026 The CGAL Wavejets project.
+// All rights reserved.
+//
+// This file is part of the Wavejets package (https://github.com/cgal-wavejets/wavejets).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : The CGAL Wavejets developers
+
+#ifndef CGAL_WAVEJETS_INTERNAL_FITTING_CORE_H
+#define CGAL_WAVEJETS_INTERNAL_FITTING_CORE_H
+
+// The one Wavejet fitting core (WAVEJETS_MATH.md §2), shared by Wavejet_fitting and every
+// point-set function. It works on neighbor offsets q_l - p in double precision, owns its
+// scratch (grown, never shrunk: no heap allocation per point once warm) and is used by one
+// thread at a time.
+
+#include <CGAL/Wavejets/Fitting_options.h>
+#include <CGAL/Wavejets/internal/basis.h>
+#include <CGAL/Wavejets/internal/differential_quantities.h>
+#include <CGAL/Wavejets/internal/least_squares.h>
+
+#include <Eigen/Core>
+#include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <cstddef>
+#include <limits>
+#include <vector>
+
+namespace CGAL {
+namespace Wavejets {
+namespace internal {
+
+/// An orthonormal direct frame (u, v, n): theta = 0 along u, heights along n.
+struct Frame
+{
+  Eigen::Vector3d u = Eigen::Vector3d::UnitX(), v = Eigen::Vector3d::UnitY(), n = Eigen::Vector3d::UnitZ();
+};
+
+/// Result of Fitter::fit. The coefficients live in the Fitter (see Fitter::coefficients()).
+struct Fit_result
+{
+  Fit_status status = Fit_status::TOO_FEW_POINTS;
+  std::size_t order = 0;           // order actually fitted (after adaptive reduction)
+  std::size_t number_of_points = 0;
+  double radius = 0.;              // Rf
+  Frame frame;                     // final (corrected) tangent frame
+  Frame initial_frame;             // frame of the first fit (PCA or seed)
+  Height_derivatives curvature_derivatives; // world units, in curvature_frame
+  Frame curvature_frame;
+  std::size_t corrections = 0;     // number of accepted re-fits
+  double initial_tilt = 0., final_tilt = 0.; // |f_{1,1}| of the first and of the kept fit
+  double condition_number = 0.;    // of the kept fit's (weighted, rescaled) system, if requested
+  Eigen::Vector3d pca_values = Eigen::Vector3d::Zero(); // descending
+  Eigen::Matrix3d pca_vectors = Eigen::Matrix3d::Identity(); // columns, matching pca_values
+
+  bool success() const { return status == Fit_status::SUCCESS; }
+};
+
+/// The fitting core. One instance per thread; reuse it across points.
+class Fitter
+{
+public:
+  /// Fits a Wavejet to the points `offsets[0..L-1]` given relative to the query point p (p itself,
+  /// if part of the neighborhood, appears as a zero offset). `hint_normal` (may be null) orients
+  /// the frame, or seeds it when `options.normal_use == SEED_FRAME`.
+  Fit_status fit(const Eigen::Vector3d* offsets, std::size_t L, std::size_t requested_order,
+                 const Fitting_options& options, const Eigen::Vector3d* hint_normal, Fit_result& out)
+  {
+    out = Fit_result();
+    out.number_of_points = L;
+    want_condition_ = options.compute_condition_number;
+    if(requested_order < 1)
+      return fail(out, Fit_status::TOO_FEW_POINTS);
+    if(hint_normal && !hint_normal->allFinite())
+      return fail(out, Fit_status::NON_FINITE_INPUT);
+    double max2 = 0.;
+    for(std::size_t l = 0; l < L; ++l)
+    {
+      if(!offsets[l].allFinite())
+        return fail(out, Fit_status::NON_FINITE_INPUT);
+      max2 = (std::max)(max2, offsets[l].squaredNorm());
+    }
+    const std::size_t min_order = (std::min)((std::max)(options.minimum_order, std::size_t(1)), requested_order);
+    std::size_t order = requested_order;
+    const double beta = (std::max)(options.neighbors_per_coefficient, 1.);
+    while(order >= min_order && double(L) < beta * double(number_of_coefficients(order)))
+      --order;
+    if(order < min_order || L == 0)
+      return fail(out, Fit_status::TOO_FEW_POINTS);
+
+    const double radius = options.neighborhood_radius > 0 ? options.neighborhood_radius : std::sqrt(max2);
+    if(!(radius > 0.) || !std::isfinite(radius))
+      return fail(out, Fit_status::DEGENERATE_NEIGHBORHOOD);
+    out.radius = radius;
+
+    // Rescaled offsets: all later work is in units of Rf.
+    scaled_.resize(L);
+    const double inv_radius = 1. / radius;
+    for(std::size_t l = 0; l < L; ++l)
+      scaled_[l] = offsets[l] * inv_radius;
+
+    Frame frame;
+    if(!initial_frame(L, options, hint_normal, frame, out))
+      return fail(out, Fit_status::DEGENERATE_NEIGHBORHOOD);
+    out.initial_frame = frame;
+
+    // First fit, lowering the order while the system is rank-deficient.
+    bool solved = false;
+    for(; order >= min_order; --order)
+    {
+      if(fit_in_frame(L, order, frame, options.robust_iterations, first_))
+      { solved = true; break; }
+    }
+    if(!solved)
+      return fail(out, Fit_status::DEGENERATE_NEIGHBORHOOD);
+    out.order = order;
+    const std::size_t B = number_of_coefficients(order);
+    const Height_derivatives first_derivatives = height_derivatives(first_.data(), order, inv_radius);
+    out.initial_tilt = tilt(first_.data(), order);
+    best_.assign(first_.begin(), first_.begin() + B);
+    double best_tilt = out.initial_tilt;
+    Frame best_frame = frame;
+    double best_condition = condition_;
+
+    // Tangent-plane correction: re-fit in the plane orthogonal to the fitted normal, keep the best.
+    for(std::size_t it = 0; it < options.correction_iterations && best_tilt > 0.; ++it)
+    {
+      const Frame corrected = tilted_frame(best_frame, best_.data(), order);
+      if(!fit_in_frame(L, order, corrected, options.robust_iterations, trial_))
+        break;
+      const double t = tilt(trial_.data(), order);
+      if(!(t < best_tilt))
+        break;
+      best_.assign(trial_.begin(), trial_.begin() + B);
+      best_tilt = t;
+      best_frame = corrected;
+      best_condition = condition_;
+      ++out.corrections;
+    }
+    out.frame = best_frame;
+    out.final_tilt = best_tilt;
+    out.condition_number = best_condition;
+    if(options.curvature_frame == Curvature_frame::INITIAL_FRAME)
+    {
+      out.curvature_derivatives = first_derivatives;
+      out.curvature_frame = out.initial_frame;
+    }
+    else
+    {
+      out.curvature_derivatives = height_derivatives(best_.data(), order, inv_radius);
+      out.curvature_frame = best_frame;
+    }
+    out.status = Fit_status::SUCCESS;
+    return out.status;
+  }
+
+  /// Real unknowns of the kept fit, in rescaled units (f^{rescaled}_{k,n} = f_{k,n} Rf^{k-1}),
+  /// in the layout of basis.h. Valid until the next call of fit().
+  const double* coefficients() const { return best_.data(); }
+
+private:
+  Fit_status fail(Fit_result& out, Fit_status s)
+  {
+    out.status = s;
+    out.order = 0;
+    return s;
+  }
+
+  static double tilt(const double* c, std::size_t order)
+  {
+    return order >= 1 ? 0.5 * std::sqrt(c[1] * c[1] + c[2] * c[2]) : 0.;
+  }
+
+  // PCA of the rescaled offsets (smallest eigenvalue: n), or the seed normal.
+  bool initial_frame(std::size_t L, const Fitting_options& options, const Eigen::Vector3d* hint, Frame& f,
+                     Fit_result& out)
+  {
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for(std::size_t l = 0; l < L; ++l) mean += scaled_[l];
+    mean /= double(L);
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for(std::size_t l = 0; l < L; ++l)
+    {
+      const Eigen::Vector3d d = scaled_[l] - mean;
+      cov.noalias() += d * d.transpose();
+    }
+    cov /= double(L);
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov); // ascending eigenvalues
+    if(eig.info() != Eigen::Success)
+      return false;
+    const double s2 = out.radius * out.radius;
+    out.pca_values = Eigen::Vector3d(eig.eigenvalues()(2), eig.eigenvalues()(1), eig.eigenvalues()(0)) * s2;
+    out.pca_vectors.col(0) = eig.eigenvectors().col(2);
+    out.pca_vectors.col(1) = eig.eigenvectors().col(1);
+    out.pca_vectors.col(2) = eig.eigenvectors().col(0);
+    if(out.pca_vectors.determinant() < 0)
+      out.pca_vectors.col(2) = -out.pca_vectors.col(2);
+
+    if(hint && options.normal_use == Normal_use::SEED_FRAME)
+    {
+      const double len = hint->norm();
+      if(!(len > 0.))
+        return false;
+      f.n = *hint / len;
+      Eigen::Vector3d u = out.pca_vectors.col(0) - out.pca_vectors.col(0).dot(f.n) * f.n;
+      if(u.norm() < 1e-6)
+        u = f.n.unitOrthogonal();
+      f.u = u.normalized();
+      f.v = f.n.cross(f.u);
+      return true;
+    }
+    f.u = out.pca_vectors.col(0);
+    f.n = out.pca_vectors.col(2);
+    if(hint && hint->dot(f.n) < 0.)
+    {
+      f.n = -f.n;
+    }
+    f.v = f.n.cross(f.u);
+    return true;
+  }
+
+  // Frame rotated (minimal rotation) so that its normal is the fitted surface's normal at the origin.
+  static Frame tilted_frame(const Frame& f, const double* c, std::size_t order)
+  {
+    if(order < 1) return f;
+    const Eigen::Vector3d target = (f.n - c[1] * f.u - c[2] * f.v).normalized();
+    const Eigen::Vector3d axis = f.n.cross(target);
+    const double s = axis.norm(), co = f.n.dot(target);
+    Frame r;
+    r.n = target;
+    if(s < 1e-300) return f;
+    const Eigen::Vector3d k = axis / s;
+    auto rotate = [&](const Eigen::Vector3d& x) {
+      return Eigen::Vector3d(x * co + k.cross(x) * s + k * (k.dot(x)) * (1. - co));
+    };
+    r.u = rotate(f.u).normalized();
+    r.v = r.n.cross(r.u);
+    return r;
+  }
+
+  // Builds the system in `frame` and solves it (with optional IRLS passes) into `c`.
+  bool fit_in_frame(std::size_t L, std::size_t order, const Frame& frame, std::size_t robust_iterations,
+                    std::vector<double>& c)
+  {
+    const std::size_t B = number_of_coefficients(order);
+    basis_.resize(L * B);
+    heights_.resize(L);
+    row_.resize(B);
+    c.resize(B);
+    for(std::size_t l = 0; l < L; ++l)
+    {
+      const Eigen::Vector3d& d = scaled_[l];
+      evaluate_basis(d.dot(frame.u), d.dot(frame.v), order, row_.data());
+      for(std::size_t b = 0; b < B; ++b) basis_[b * L + l] = row_[b];
+      heights_[l] = d.dot(frame.n);
+    }
+    if(!solve_weighted(L, B, nullptr, c))
+      return false;
+
+    for(std::size_t it = 0; it < robust_iterations; ++it)
+    {
+      // Tukey biweight on residuals scaled by 1.4826 MAD.
+      residual_.resize(L);
+      for(std::size_t l = 0; l < L; ++l)
+      {
+        double z = 0.;
+        for(std::size_t b = 0; b < B; ++b) z += basis_[b * L + l] * c[b];
+        residual_[l] = std::abs(heights_[l] - z);
+      }
+      sorted_.assign(residual_.begin(), residual_.end());
+      std::nth_element(sorted_.begin(), sorted_.begin() + L / 2, sorted_.end());
+      const double scale = 1.4826 * sorted_[L / 2];
+      if(!(scale > 1e-14))
+        break; // (near) exact fit: nothing to reweight
+      const double cutoff = 4.685 * scale;
+      weights_.resize(L);
+      for(std::size_t l = 0; l < L; ++l)
+      {
+        const double t = residual_[l] / cutoff;
+        weights_[l] = t < 1. ? (1. - t * t) : 0.; // sqrt of the biweight (1 - t^2)^2
+      }
+      if(!solve_weighted(L, B, weights_.data(), trial_solution_))
+        break;
+      c.assign(trial_solution_.begin(), trial_solution_.end());
+    }
+    return true;
+  }
+
+  // Least squares with rows scaled by sqrt_weights (null: unweighted). Keeps basis_ intact.
+  bool solve_weighted(std::size_t L, std::size_t B, const double* sqrt_weights, std::vector<double>& c)
+  {
+    work_.assign(basis_.begin(), basis_.begin() + L * B);
+    rhs_.assign(heights_.begin(), heights_.begin() + L);
+    if(sqrt_weights)
+    {
+      for(std::size_t b = 0; b < B; ++b)
+        for(std::size_t l = 0; l < L; ++l) work_[b * L + l] *= sqrt_weights[l];
+      for(std::size_t l = 0; l < L; ++l) rhs_[l] *= sqrt_weights[l];
+    }
+    c.resize(B);
+    if(!householder_least_squares(work_.data(), L, B, rhs_.data(), c.data()))
+      return false;
+    for(std::size_t b = 0; b < B; ++b)
+      if(!std::isfinite(c[b])) return false;
+    if(want_condition_)
+    {
+      Eigen::MatrixXd R = Eigen::MatrixXd::Zero(B, B);
+      for(std::size_t j = 0; j < B; ++j)
+        for(std::size_t i = 0; i <= j; ++i) R(i, j) = work_[j * L + i];
+      Eigen::JacobiSVD<Eigen::MatrixXd> svd(R);
+      const Eigen::VectorXd sv = svd.singularValues();
+      condition_ = sv(B - 1) > 0 ? sv(0) / sv(B - 1) : std::numeric_limits<double>::infinity();
+    }
+    return true;
+  }
+
+  bool want_condition_ = false;
+  double condition_ = 0.;
+  std::vector<Eigen::Vector3d> scaled_;
+  std::vector<double> basis_, work_, heights_, rhs_, row_, residual_, sorted_, weights_;
+  std::vector<double> first_, trial_, best_, trial_solution_;
+};
+
+} // namespace internal
+} // namespace Wavejets
+} // namespace CGAL
+
+#endif // CGAL_WAVEJETS_INTERNAL_FITTING_CORE_H

@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# Installs the Debian packages the package builds on, if any is missing (run as root).
+set -euo pipefail
+packages="g++ cmake make libcgal-dev libeigen3-dev libtbb-dev libboost-dev"
+missing=""
+for p in $packages; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
+done
+if [ -n "$missing" ]; then
+  echo "Installing missing Debian packages:$missing"
+  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  $SUDO apt-get update -q
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q $missing
+fi
