@@ -1,0 +1,53 @@
+// Copyright (c) 2026 The CGAL Wavejets project.
+// All rights reserved.
+//
+// This file is part of the Wavejets package (https://github.com/cgal-wavejets/wavejets).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : The CGAL Wavejets developers
+
+#ifndef CGAL_WAVEJETS_PROCESSING_REPORT_H
+#define CGAL_WAVEJETS_PROCESSING_REPORT_H
+
+#include <cstddef>
+#include <ostream>
+
+namespace CGAL {
+namespace Wavejets {
+
+/// \ingroup PkgWavejetsRef
+/// What a point-set function did; returned by every `wavejet_*` function.
+/// Points that could not be fitted are left unchanged (their outputs are not written).
+struct Processing_report
+{
+  /// Size of the input range.
+  std::size_t number_of_points = 0;
+  /// Points with a Wavejet (their outputs were written).
+  std::size_t number_of_fitted_points = 0;
+  /// Points left unchanged: too few neighbors, degenerate neighborhood or non-finite input.
+  std::size_t number_of_unfitted_points = 0;
+  /// Among the unfitted points, those with a NaN or infinite coordinate.
+  std::size_t number_of_non_finite_points = 0;
+  /// Fitted points whose order was lowered below the requested one (adaptive order).
+  std::size_t number_of_reduced_order_points = 0;
+  /// `wavejet_enhance_positions` only: points whose motion was clamped to `maximum_displacement`.
+  std::size_t number_of_clamped_points = 0;
+  /// True if the callback stopped the computation; then nothing at all was written.
+  bool interrupted = false;
+};
+
+/// Prints the report on one line.
+inline std::ostream& operator<<(std::ostream& os, const Processing_report& r)
+{
+  os << r.number_of_points << " points, " << r.number_of_fitted_points << " fitted, "
+     << r.number_of_unfitted_points << " not fitted (" << r.number_of_non_finite_points << " non-finite), "
+     << r.number_of_reduced_order_points << " at reduced order, " << r.number_of_clamped_points << " clamped"
+     << (r.interrupted ? ", interrupted (nothing written)" : "");
+  return os;
+}
+
+} // namespace Wavejets
+} // namespace CGAL
+
+#endif // CGAL_WAVEJETS_PROCESSING_REPORT_H

@@ -1,0 +1,124 @@
+// Copyright (c) 2026 The CGAL Wavejets project.
+// All rights reserved.
+//
+// This file is part of the Wavejets package (https://github.com/cgal-wavejets/wavejets).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : The CGAL Wavejets developers
+
+#ifndef CGAL_WAVEJETS_INTERNAL_NEIGHBOR_QUERY_H
+#define CGAL_WAVEJETS_INTERNAL_NEIGHBOR_QUERY_H
+
+// Neighborhoods by index over a copy of the positions (double precision), with CGAL spatial
+// searching: k nearest, all within a radius, or the k nearest within a radius. The query point
+// itself is never returned: the caller puts it first, so every fit is centered on its query
+// point (CGAL 5.5.1's jet_smooth_point_set is not, with neighbor_radius). Non-finite points are
+// kept out of the tree. The tree is built in the constructor; queries are const and thread safe.
+
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/Search_traits_3.h>
+#include <CGAL/Search_traits_adapter.h>
+#include <CGAL/Orthogonal_k_neighbor_search.h>
+#include <CGAL/Fuzzy_sphere.h>
+#include <CGAL/Kd_tree.h>
+#include <CGAL/property_map.h>
+
+#include <boost/iterator/function_output_iterator.hpp>
+
+#include <algorithm>
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+namespace CGAL {
+namespace Wavejets {
+namespace internal {
+
+class Neighbor_query
+{
+public:
+  typedef Simple_cartesian<double> SC;
+  typedef SC::Point_3 Point;
+  typedef Pointer_property_map<Point>::const_type Index_map; // index -> point
+
+private:
+  typedef Search_traits_3<SC> Base_traits;
+  typedef Search_traits_adapter<std::size_t, Index_map, Base_traits> Traits;
+  typedef Sliding_midpoint<Traits> Splitter;
+  typedef Distance_adapter<std::size_t, Index_map, Euclidean_distance<Base_traits> > Distance;
+  typedef Kd_tree<Traits, Splitter, Tag_true, Tag_true> Tree;
+  typedef Orthogonal_k_neighbor_search<Traits, Distance, Splitter, Tree> Knn;
+  typedef Fuzzy_sphere<Traits> Sphere;
+
+public:
+  /// `points` must outlive the query; `in_tree[i]` false keeps point i out of every neighborhood.
+  Neighbor_query(const std::vector<Point>& points, const std::vector<unsigned char>& in_tree)
+    : m_points(points), m_map(make_property_map(points)), m_traits(m_map), m_tree(Splitter(), m_traits),
+      m_distance(m_map)
+  {
+    std::vector<std::size_t> indices;
+    for(std::size_t i = 0; i < points.size(); ++i)
+      if(in_tree[i]) indices.push_back(i);
+    m_tree.insert(indices.begin(), indices.end());
+    m_tree.build();
+    m_size = indices.size();
+  }
+
+  Neighbor_query(const Neighbor_query&) = delete;
+  Neighbor_query& operator=(const Neighbor_query&) = delete;
+
+  /// Neighbors of point `i` (not `i` itself) into `out`: with `radius == 0` its `k` nearest
+  /// (nearest first); otherwise all points within `radius`, nearest first, at most `k` if `k > 0`.
+  /// Ties are broken by index, so the result does not depend on the tree's internal order.
+  void neighbors(std::size_t i, unsigned int k, double radius, std::vector<std::size_t>& out,
+                 std::vector<std::pair<double, std::size_t> >& scratch) const
+  {
+    out.clear();
+    scratch.clear();
+    const Point& p = m_points[i];
+    if(radius > 0)
+    {
+      Sphere sphere(p, radius, 0., m_traits);
+      m_tree.search(boost::make_function_output_iterator(Collector{&m_points, &scratch, i}), sphere);
+    }
+    else
+    {
+      if(k == 0 || m_size == 0) return;
+      // one more than asked: the query point (or one of its duplicates) comes back too
+      Knn search(m_tree, p, (std::min<std::size_t>)(std::size_t(k) + 1, m_size), 0., true, m_distance);
+      for(typename Knn::iterator it = search.begin(); it != search.end(); ++it)
+        if(it->first != i) scratch.emplace_back(it->second, it->first);
+    }
+    std::sort(scratch.begin(), scratch.end());
+    std::size_t count = scratch.size();
+    if(k > 0 && count > k) count = k;
+    for(std::size_t j = 0; j < count; ++j) out.push_back(scratch[j].second);
+  }
+
+private:
+  // Output of the sphere search (copy-assignable, as the kd-tree needs): (squared distance, index).
+  struct Collector
+  {
+    const std::vector<Point>* points;
+    std::vector<std::pair<double, std::size_t> >* out;
+    std::size_t query;
+    void operator()(std::size_t j) const
+    {
+      if(j != query) out->emplace_back(squared_distance((*points)[query], (*points)[j]), j);
+    }
+  };
+
+  const std::vector<Point>& m_points;
+  Index_map m_map;
+  Traits m_traits;
+  Tree m_tree;
+  Distance m_distance;
+  std::size_t m_size = 0;
+};
+
+} // namespace internal
+} // namespace Wavejets
+} // namespace CGAL
+
+#endif // CGAL_WAVEJETS_INTERNAL_NEIGHBOR_QUERY_H

@@ -1,0 +1,313 @@
+// Copyright (c) 2026 The CGAL Wavejets project.
+// All rights reserved.
+//
+// This file is part of the Wavejets package (https://github.com/cgal-wavejets/wavejets).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : The CGAL Wavejets developers
+
+#ifndef CGAL_WAVEJETS_INTERNAL_POINT_SET_DRIVER_H
+#define CGAL_WAVEJETS_INTERNAL_POINT_SET_DRIVER_H
+
+// The one per-point driver behind every wavejet_* function:
+//   named parameters -> copy of the input (double) -> kd-tree -> CGAL::for_each over chunks of
+//   points (one Fitter and scratch per chunk, no allocation per point once warm) -> a small
+//   per-function kernel writes into a buffer slot per point -> the function commits the buffers
+//   after all points are done (never in place), or nothing at all if interrupted.
+// Every point's result depends only on the unmodified input, so Sequential_tag and Parallel_tag
+// give bitwise identical results.
+
+#include <CGAL/Wavejets/Fitting_options.h>
+#include <CGAL/Wavejets/Processing_report.h>
+#include <CGAL/Wavejets/parameters.h>
+#include <CGAL/Wavejets/internal/fitting_core.h>
+#include <CGAL/Wavejets/internal/neighbor_query.h>
+
+#include <CGAL/Point_set_processing_3/internal/Callback_wrapper.h>
+#include <CGAL/boost/graph/named_params_helper.h>
+#include <CGAL/Named_function_parameters.h>
+#include <CGAL/for_each.h>
+#include <CGAL/number_utils.h>
+#include <CGAL/property_map.h>
+#include <CGAL/tags.h>
+#include <CGAL/version.h>
+
+#include <Eigen/Core>
+
+#include <atomic>
+#include <cmath>
+#include <functional>
+#include <iterator>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+namespace CGAL {
+template <class Point, class Vector> class Point_set_3;
+
+namespace Wavejets {
+namespace internal {
+
+/// Precondition that stays checked in release builds: bad input gets a clear error, never a crash.
+inline void require(bool condition, const char* function, const char* message)
+{
+  if(!condition)
+    throw std::invalid_argument(std::string(function) + ": " + message);
+}
+
+/// Whether the caller gave a normal map (a Point_set_3 counts only if it has normals).
+template <class NP>
+bool has_normal_map_parameter(const NP&)
+{
+  return !CGAL::parameters::is_default_parameter<NP, CGAL::internal_np::normal_t>::value;
+}
+template <class Point, class Vector, class NP>
+bool has_normal_map(const CGAL::Point_set_3<Point, Vector>& ps, const NP& np)
+{
+  return has_normal_map_parameter(np) || ps.has_normal_map();
+}
+template <class PointRange, class NP>
+bool has_normal_map(const PointRange&, const NP& np)
+{
+  return has_normal_map_parameter(np);
+}
+
+/// Settings of the per-point loop, read once from the named parameters.
+struct Driver_settings
+{
+  unsigned int k = 0;
+  double neighbor_radius = 0.;
+  std::size_t order = 2;
+  Fitting_options fitting;
+  bool use_input_normals = false;       // orient (or seed) the frames with the input normals
+  bool restrict_to_consistent_normals = false;
+};
+
+/// Reads the settings shared by all functions. `default_order` differs per function.
+template <class NP>
+Driver_settings read_driver_settings(unsigned int k, const NP& np, std::size_t default_order, const char* fn)
+{
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  Driver_settings s;
+  s.k = k;
+  s.neighbor_radius = to_double(choose_parameter(get_parameter(np, CGAL::internal_np::neighbor_radius), 0.));
+  s.order = choose_parameter(get_parameter(np, Wavejets::internal_np::order), default_order);
+  require(s.k >= 2 || s.neighbor_radius > 0, fn, "needs k >= 2 or neighbor_radius > 0");
+  require(std::isfinite(s.neighbor_radius) && s.neighbor_radius >= 0, fn, "neighbor_radius must be finite and >= 0");
+  require(s.order >= 1, fn, "order must be >= 1");
+  s.fitting.neighbors_per_coefficient =
+    choose_parameter(get_parameter(np, Wavejets::internal_np::neighbors_per_coefficient), 1.1);
+  require(s.fitting.neighbors_per_coefficient >= 1., fn, "neighbors_per_coefficient must be >= 1");
+  s.fitting.minimum_order = choose_parameter(get_parameter(np, Wavejets::internal_np::minimum_order), std::size_t(2));
+  s.fitting.correction_iterations =
+    choose_parameter(get_parameter(np, Wavejets::internal_np::correction_iterations), std::size_t(2));
+  s.fitting.robust_iterations = choose_parameter(get_parameter(np, Wavejets::internal_np::robust_iterations), std::size_t(0));
+  s.fitting.curvature_frame =
+    choose_parameter(get_parameter(np, Wavejets::internal_np::curvature_frame), Curvature_frame::INITIAL_FRAME);
+  s.fitting.normal_use = choose_parameter(get_parameter(np, Wavejets::internal_np::seed_with_input_normals), false)
+                           ? Normal_use::SEED_FRAME : Normal_use::ORIENT;
+  s.fitting.compute_condition_number = false;
+  s.restrict_to_consistent_normals =
+    choose_parameter(get_parameter(np, Wavejets::internal_np::restrict_to_consistent_normals), false);
+  return s;
+}
+
+/// Input of a point-set function: the range's keys, and positions/normals copied to double.
+template <class PointRange, class NP>
+struct Point_set_input
+{
+  typedef Point_set_processing_3_np_helper<PointRange, NP> NP_helper;
+  typedef typename NP_helper::Point_map Point_map;
+  typedef typename NP_helper::Normal_map Normal_map;
+  typedef typename NP_helper::Geom_traits Geom_traits;
+  typedef typename Geom_traits::Point_3 Point_3;
+  typedef typename Geom_traits::Vector_3 Vector_3;
+  typedef typename PointRange::iterator iterator;
+
+  Point_map point_map;
+  Normal_map normal_map;
+  bool has_normals;
+  std::vector<iterator> items;               // range order
+  std::vector<Neighbor_query::Point> points; // double copy (fed to the kd-tree)
+  std::vector<unsigned char> finite;         // point i has finite coordinates
+  std::vector<Eigen::Vector3d> normals;      // input normals (empty if none are read)
+
+  /// `read_normals`: copy the input normals (for orientation, seeding or restriction).
+  Point_set_input(PointRange& range, const NP& np, bool read_normals)
+    : point_map(NP_helper::get_point_map(range, np)), normal_map(NP_helper::get_normal_map(range, np)),
+      has_normals(has_normal_map(range, np))
+  {
+    for(iterator it = range.begin(); it != range.end(); ++it) items.push_back(it);
+    points.reserve(items.size());
+    finite.reserve(items.size());
+    for(const iterator& it : items)
+    {
+      const Point_3& p = get(point_map, *it);
+      points.emplace_back(to_double(p.x()), to_double(p.y()), to_double(p.z()));
+      const Neighbor_query::Point& q = points.back();
+      finite.push_back(std::isfinite(q.x()) && std::isfinite(q.y()) && std::isfinite(q.z()));
+    }
+    if(read_normals && has_normals)
+    {
+      normals.reserve(items.size());
+      for(const iterator& it : items)
+      {
+        const Vector_3 n = get(normal_map, *it);
+        normals.emplace_back(to_double(n.x()), to_double(n.y()), to_double(n.z()));
+      }
+    }
+  }
+
+  std::size_t size() const { return items.size(); }
+  Eigen::Vector3d position(std::size_t i) const { return Eigen::Vector3d(points[i].x(), points[i].y(), points[i].z()); }
+  static Vector_3 to_vector(const Eigen::Vector3d& v) { return Vector_3(v.x(), v.y(), v.z()); }
+};
+
+/// What a kernel sees of one fitted point.
+struct Fitted_point
+{
+  std::size_t index;
+  const Fit_result& fit;
+  const double* coefficients; // rescaled units (see Fitter::coefficients())
+};
+
+/// Per-point statuses of a run, and the summary.
+struct Driver_run
+{
+  std::vector<unsigned char> fitted; // 1 where the kernel was called
+  Processing_report report;
+};
+
+/// Runs `kernel(const Fitted_point&)` on every point that can be fitted. The kernel must only
+/// write to its own slot of per-point buffers (it runs concurrently under Parallel_tag).
+template <class ConcurrencyTag, class Input, class Kernel>
+Driver_run fit_each_point(const Input& input, const Driver_settings& settings,
+                          const std::function<bool(double)>& callback, const Kernel& kernel)
+{
+  const std::size_t N = input.size();
+  Driver_run run;
+  run.report.number_of_points = N;
+  run.fitted.assign(N, 0);
+  std::vector<unsigned char> status(N, (unsigned char)(Fit_status::TOO_FEW_POINTS));
+  std::vector<unsigned char> reduced(N, 0);
+  if(N == 0) return run;
+
+  const Neighbor_query query(input.points, input.finite);
+  const bool have_normals = !input.normals.empty();
+
+  const std::size_t chunk_size = 256;
+  std::vector<std::size_t> chunks;
+  for(std::size_t b = 0; b < N; b += chunk_size) chunks.push_back(b);
+
+  Point_set_processing_3::internal::Callback_wrapper<ConcurrencyTag> progress(callback, N);
+  std::atomic<bool> interrupted(false);
+
+  CGAL::for_each<ConcurrencyTag>(chunks, [&](const std::size_t begin) -> bool {
+    Fitter fitter;
+    Fit_result fit;
+    std::vector<std::size_t> neighbors;
+    std::vector<std::pair<double, std::size_t> > scratch;
+    std::vector<Eigen::Vector3d> offsets;
+    const std::size_t end = (std::min)(begin + chunk_size, N);
+    for(std::size_t i = begin; i < end; ++i)
+    {
+      if(interrupted || progress.interrupted()) { interrupted = true; return false; }
+      ++progress.advancement();
+      if(!input.finite[i]) { status[i] = (unsigned char)(Fit_status::NON_FINITE_INPUT); continue; }
+
+      const Eigen::Vector3d* hint = nullptr;
+      Eigen::Vector3d normal;
+      if(have_normals)
+      {
+        normal = input.normals[i];
+        if(normal.allFinite() && normal.squaredNorm() > 0) hint = &normal; // else: unoriented
+      }
+      query.neighbors(i, settings.k, settings.neighbor_radius, neighbors, scratch);
+      const Eigen::Vector3d p = input.position(i);
+      offsets.assign(1, Eigen::Vector3d::Zero()); // the query point, first
+      for(std::size_t j : neighbors)
+      {
+        if(settings.restrict_to_consistent_normals && hint && !(input.normals[j].dot(normal) >= 0.))
+          continue;
+        offsets.push_back(input.position(j) - p);
+      }
+      Fitting_options options = settings.fitting;
+      options.neighborhood_radius = settings.neighbor_radius;
+      fitter.fit(offsets.data(), offsets.size(), settings.order, options, hint, fit);
+      status[i] = (unsigned char)(fit.status);
+      if(!fit.success()) continue;
+      reduced[i] = fit.order < settings.order;
+      kernel(Fitted_point{i, fit, fitter.coefficients()});
+      run.fitted[i] = 1;
+    }
+    return true;
+  });
+  progress.join();
+
+  Processing_report& r = run.report;
+  r.interrupted = interrupted;
+  for(std::size_t i = 0; i < N; ++i)
+  {
+    if(run.fitted[i]) { ++r.number_of_fitted_points; r.number_of_reduced_order_points += reduced[i]; }
+    else
+    {
+      ++r.number_of_unfitted_points;
+      r.number_of_non_finite_points += (status[i] == (unsigned char)(Fit_status::NON_FINITE_INPUT));
+    }
+  }
+  return run;
+}
+
+template <class Input>
+void write_fitted_map(const Input&, const Driver_run&, CGAL::internal_np::Param_not_found) {}
+template <class Input, class FittedMap>
+void write_fitted_map(const Input& input, const Driver_run& run, const FittedMap& map)
+{
+  for(std::size_t i = 0; i < input.size(); ++i)
+    put(map, *input.items[i], bool(run.fitted[i]));
+}
+
+/// Second pass of every function: unless the run was interrupted, calls `write(i, key)` for each
+/// fitted point i (in range order) and fills the optional `fitted_map`. Unfitted points are untouched.
+template <class Input, class NP, class Write>
+void commit(const Input& input, const Driver_run& run, const NP& np, const Write& write)
+{
+  if(run.report.interrupted) return;
+  for(std::size_t i = 0; i < input.size(); ++i)
+    if(run.fitted[i]) write(i, *input.items[i]);
+  write_fitted_map(input, run, CGAL::parameters::get_parameter(np, Wavejets::internal_np::fitted_map));
+}
+
+/// `put` for an optional output map (a named parameter that may be absent).
+template <class Key, class Value>
+void put_if_given(CGAL::internal_np::Param_not_found, const Key&, const Value&) {}
+template <class Map, class Key, class Value>
+void put_if_given(const Map& map, const Key& key, const Value& value) { put(map, key, value); }
+
+/// The callback named parameter (empty function if absent).
+template <class NP>
+std::function<bool(double)> read_callback(const NP& np)
+{
+  return CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, CGAL::internal_np::callback),
+                                      std::function<bool(double)>());
+}
+
+/// Evaluation radius in units of Rf: s / Rf, clamped to 1 (a_n(s) extrapolates beyond Rf); 1 if s <= 0.
+inline double relative_evaluation_radius(double s, double Rf) { return s > 0 ? (std::min)(s / Rf, 1.) : 1.; }
+
+/// Unit normal of the Wavejet surface at the origin, in the final frame (tilted by the residual f_{1,+-1}).
+inline Eigen::Vector3d surface_normal(const Fitted_point& fp)
+{
+  const Frame& f = fp.fit.frame;
+  if(fp.fit.order < 1) return f.n;
+  return (f.n - fp.coefficients[1] * f.u - fp.coefficients[2] * f.v).normalized();
+}
+
+} // namespace internal
+} // namespace Wavejets
+} // namespace CGAL
+
+#endif // CGAL_WAVEJETS_INTERNAL_POINT_SET_DRIVER_H

@@ -1,0 +1,92 @@
+// Copyright (c) 2026 The CGAL Wavejets project.
+// All rights reserved.
+//
+// This file is part of the Wavejets package (https://github.com/cgal-wavejets/wavejets).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : The CGAL Wavejets developers
+#ifndef CGAL_WAVEJET_ENHANCE_NORMALS_H
+#define CGAL_WAVEJET_ENHANCE_NORMALS_H
+
+#include <CGAL/Wavejets/internal/point_set_driver.h>
+#include <CGAL/Wavejets/internal/basis.h>
+
+#include <CGAL/disable_warnings.h>
+
+#include <complex>
+
+namespace CGAL {
+
+/*!
+\ingroup PkgWavejetsRef
+
+Enhances, blurs, inverts or twists the normals of a point set by tilting each one according to
+its Wavejet's antisymmetric tendency a_{-1}(s) (Béarzi et al. 2018, Algorithm 2; WAVEJETS_MATH.md §7).
+In the final tangent frame (u, v, n) of each point:
+
+    a_{-1}(s) = sum_{k = 3, 5, ..} f_{k,-1} s^{k+2}/(k+2)
+    f'_{1,-1} = f_{1,-1} - pi (gain - 1) a_{-1}(s) / Rf^3,   f'_x + i f'_y = 2 f'_{1,-1}
+    n'        = normalize(-f'_x u - f'_y v + n).
+
+`gain == 1` gives the Wavejet's own normal (a denoised normal), 2 exaggerates normal variation,
+0 blurs it, negative gains invert it, and a non-real gain twists the normals (its phase rotates
+the tilt in the tangent plane). Positions are not changed. The output keeps the orientation of
+the input normal (the frame is oriented by it; a zero or NaN input normal leaves that point's
+orientation to PCA). Every new normal is computed from the original input before any is written.
+
+\tparam ConcurrencyTag `Sequential_tag`, `Parallel_tag` or `Parallel_if_available_tag`; both give bitwise identical results.
+\tparam PointRange a model of `Range`.
+
+\param points input points with normals.
+\param k number of neighbors, as in `wavejet_estimate_normals()`.
+\param gain complex gain alpha_{-1} (a real number converts); finite.
+\param np the named parameters of `wavejet_enhance_positions()` except `maximum_displacement` and
+       `write_normals`; `normal_map` (read-write) is required; `order` defaults to 4.
+
+\return a `Wavejets::Processing_report`; unfitted points keep their normal.
+\throws std::invalid_argument on the conditions of `wavejet_estimate_normals()` or a non-finite gain.
+*/
+template <typename ConcurrencyTag, typename PointRange,
+          typename NamedParameters = parameters::Default_named_parameters>
+Wavejets::Processing_report wavejet_enhance_normals(PointRange& points, unsigned int k,
+                                                    const std::complex<double>& gain,
+                                                    const NamedParameters& np = parameters::default_values())
+{
+  using namespace Wavejets::internal;
+  using parameters::choose_parameter;
+  using parameters::get_parameter;
+  typedef Point_set_input<PointRange, NamedParameters> Input;
+  static_assert(Input::NP_helper::has_normal_map(), "Error: no normal map");
+  const char* fn = "wavejet_enhance_normals";
+  require(has_normal_map(points, np), fn, "the point set has no normal map");
+  require(std::isfinite(gain.real()) && std::isfinite(gain.imag()), fn, "the gain must be finite");
+
+  const Driver_settings settings = read_driver_settings(k, np, 4, fn);
+  const double s = to_double(choose_parameter(get_parameter(np, Wavejets::internal_np::evaluation_radius), 0.));
+  require(std::isfinite(s) && s >= 0, fn, "evaluation_radius must be finite and >= 0");
+  const Input input(points, np, true);
+
+  const double pi = 3.14159265358979323846;
+  std::vector<Eigen::Vector3d> normals(input.size());
+  const Driver_run run = fit_each_point<ConcurrencyTag>(input, settings, read_callback(np),
+    [&](const Fitted_point& fp) {
+      const double sigma = relative_evaluation_radius(s, fp.fit.radius);
+      const std::complex<double> a = enclosed_area(fp.coefficients, fp.fit.order, -1, sigma, 3); // rescaled
+      const std::complex<double> tilt = complex_coefficient(fp.coefficients, 1, -1) - pi * (gain - 1.) * a;
+      const double fx = 2. * tilt.real(), fy = 2. * tilt.imag();
+      const Frame& f = fp.fit.frame;
+      normals[fp.index] = (f.n - fx * f.u - fy * f.v).normalized();
+    });
+
+  commit(input, run, np, [&](std::size_t i, auto& key) {
+    put(input.normal_map, key, Input::to_vector(normals[i]));
+  });
+  return run.report;
+}
+
+} // namespace CGAL
+
+#include <CGAL/enable_warnings.h>
+
+#endif // CGAL_WAVEJET_ENHANCE_NORMALS_H

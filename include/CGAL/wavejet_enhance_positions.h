@@ -1,0 +1,112 @@
+// Copyright (c) 2026 The CGAL Wavejets project.
+// All rights reserved.
+//
+// This file is part of the Wavejets package (https://github.com/cgal-wavejets/wavejets).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : The CGAL Wavejets developers
+#ifndef CGAL_WAVEJET_ENHANCE_POSITIONS_H
+#define CGAL_WAVEJET_ENHANCE_POSITIONS_H
+
+#include <CGAL/Wavejets/internal/point_set_driver.h>
+#include <CGAL/Wavejets/internal/basis.h>
+
+#include <CGAL/disable_warnings.h>
+
+#include <cmath>
+#include <limits>
+
+namespace CGAL {
+
+/*!
+\ingroup PkgWavejetsRef
+
+Enhances, flattens or inverts the surface details of a point set by moving every point along its
+Wavejet normal (Béarzi et al. 2018, Algorithm 1; WAVEJETS_MATH.md §6):
+
+    p' = p + ( f_{0,0} - 2 pi (gain - 1) a_0(s) / Rf^2 ) n,    a_0(s) = sum_{k = 2, 4, ..} f_{k,0} s^{k+2}/(k+2),
+
+in the final tangent frame of p. `gain == 1` only projects p onto its Wavejet (denoising),
+`gain > 1` amplifies details, `0 <= gain < 1` flattens them, `gain < 0` inverts them. The
+result does not depend on the sign of n. Every displacement is computed from the original
+input, then all points move at once (no drift); a point that cannot be fitted does not move.
+
+The motion |p' - p| is clamped to `maximum_displacement` (default Rf/2, per point), keeping
+its direction, where the height-field assumption breaks; pass
+`std::numeric_limits<double>::infinity()` to switch the clamp off. The number of clamped
+points is reported.
+
+\tparam ConcurrencyTag `Sequential_tag`, `Parallel_tag` or `Parallel_if_available_tag`; both give bitwise identical results.
+\tparam PointRange a model of `Range`.
+
+\param points input points; `point_map` must be read-write.
+\param k number of neighbors, as in `wavejet_estimate_normals()`.
+\param gain the gain alpha_0 (finite).
+\param np the named parameters of `wavejet_estimate_normals()` (`normal_map` optional here: when
+       given it orients the frames, which does not change the result), plus:
+
+\cgalNamedParamsBegin
+  \cgalParamNBegin{Wavejets::parameters::order} \cgalParamDescription{Wavejet order K} \cgalParamDefault{4} \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::evaluation_radius} \cgalParamDescription{s of a_0(s), world units; clamped to Rf per point} \cgalParamDefault{Rf} \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::maximum_displacement} \cgalParamDescription{largest motion of a point, world units; infinity: no clamp} \cgalParamDefault{Rf/2 of each point} \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::write_normals} \cgalParamDescription{also write the Wavejet normals (at the input points) to `normal_map`, oriented like the input normals} \cgalParamDefault{false} \cgalParamNEnd
+\cgalNamedParamsEnd
+
+\return a `Wavejets::Processing_report`, with the number of clamped points.
+\throws std::invalid_argument on the conditions of `wavejet_estimate_normals()`, a non-finite gain,
+a `maximum_displacement` that is not positive, or `write_normals` without a normal map.
+*/
+template <typename ConcurrencyTag, typename PointRange,
+          typename NamedParameters = parameters::Default_named_parameters>
+Wavejets::Processing_report wavejet_enhance_positions(PointRange& points, unsigned int k, double gain,
+                                                      const NamedParameters& np = parameters::default_values())
+{
+  using namespace Wavejets::internal;
+  using parameters::choose_parameter;
+  using parameters::get_parameter;
+  namespace wnp = Wavejets::internal_np;
+  typedef Point_set_input<PointRange, NamedParameters> Input;
+  const char* fn = "wavejet_enhance_positions";
+
+  const Driver_settings settings = read_driver_settings(k, np, 4, fn);
+  require(std::isfinite(gain), fn, "the gain must be finite");
+  const double s = to_double(choose_parameter(get_parameter(np, wnp::evaluation_radius), 0.));
+  require(std::isfinite(s) && s >= 0, fn, "evaluation_radius must be finite and >= 0");
+  const bool default_clamp = parameters::is_default_parameter<NamedParameters, wnp::maximum_displacement_t>::value;
+  const double clamp = to_double(choose_parameter(get_parameter(np, wnp::maximum_displacement), 0.));
+  require(default_clamp || clamp > 0, fn, "maximum_displacement must be > 0 (infinity switches the clamp off)");
+  const bool with_normals = choose_parameter(get_parameter(np, wnp::write_normals), false);
+  require(!with_normals || has_normal_map(points, np), fn, "write_normals needs a normal map");
+  const Input input(points, np, true);
+
+  const double two_pi = 2. * 3.14159265358979323846;
+  std::vector<Eigen::Vector3d> motion(input.size(), Eigen::Vector3d::Zero()), normals;
+  if(with_normals) normals.resize(input.size());
+  std::vector<unsigned char> clamped(input.size(), 0);
+  const Driver_run run = fit_each_point<ConcurrencyTag>(input, settings, read_callback(np),
+    [&](const Fitted_point& fp) {
+      const double Rf = fp.fit.radius;
+      const double sigma = relative_evaluation_radius(s, Rf);
+      const double a0 = enclosed_area(fp.coefficients, fp.fit.order, 0, sigma, 2).real(); // rescaled units
+      double d = Rf * (fp.coefficients[0] - two_pi * (gain - 1.) * a0);
+      const double limit = default_clamp ? 0.5 * Rf : clamp;
+      if(std::abs(d) > limit) { d = d > 0 ? limit : -limit; clamped[fp.index] = 1; }
+      motion[fp.index] = d * fp.fit.frame.n;
+      if(with_normals) normals[fp.index] = surface_normal(fp);
+    });
+
+  Wavejets::Processing_report report = run.report;
+  commit(input, run, np, [&](std::size_t i, auto& key) {
+    put(input.point_map, key, get(input.point_map, key) + Input::to_vector(motion[i]));
+    if(with_normals) put(input.normal_map, key, Input::to_vector(normals[i]));
+    report.number_of_clamped_points += clamped[i];
+  });
+  return report;
+}
+
+} // namespace CGAL
+
+#include <CGAL/enable_warnings.h>
+
+#endif // CGAL_WAVEJET_ENHANCE_POSITIONS_H

@@ -1,0 +1,102 @@
+// Copyright (c) 2026 The CGAL Wavejets project.
+// All rights reserved.
+//
+// This file is part of the Wavejets package (https://github.com/cgal-wavejets/wavejets).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : The CGAL Wavejets developers
+#ifndef CGAL_WAVEJET_ESTIMATE_CURVATURES_H
+#define CGAL_WAVEJET_ESTIMATE_CURVATURES_H
+
+#include <CGAL/Wavejets/internal/point_set_driver.h>
+#include <CGAL/Wavejets/internal/differential_quantities.h>
+
+#include <CGAL/disable_warnings.h>
+
+namespace CGAL {
+
+/*!
+\ingroup PkgWavejetsRef
+
+Estimates, at every point, the curvature of its Wavejet: signed mean curvature H, Gaussian
+curvature K_G, principal curvatures k1 >= k2 and principal directions, each written to a
+property map the caller names (only the requested ones are stored). CGAL has no such function
+for point sets; at equal order and neighborhood, the values equal those of
+`Monge_via_jet_fitting` (with the default `curvature_frame`, the curvature comes from the first
+fit, in the PCA frame, which is the same least-squares problem as CGAL's jets).
+
+Signs are relative to the normal: a surface bending toward the normal has H > 0 (a sphere with
+outward normals has H = -1/R). When a normal map is given, the frames are oriented by its normals;
+otherwise the PCA normal's sign is arbitrary, so the signs of H, k1, k2 are too (K_G is not affected).
+
+\tparam ConcurrencyTag `Sequential_tag`, `Parallel_tag` or `Parallel_if_available_tag`; both give bitwise identical results.
+\tparam PointRange a model of `Range`.
+
+\param points input points (not modified).
+\param k number of neighbors, as in `wavejet_estimate_normals()`.
+\param np named parameters: all those of `wavejet_estimate_normals()` (except `orient_with_input_normals`:
+       a given normal map always orients), plus the output maps below (at least one is required) and:
+
+\cgalNamedParamsBegin
+  \cgalParamNBegin{Wavejets::parameters::mean_curvature_map} \cgalParamDescription{writable map receiving H (`FT`)} \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::gaussian_curvature_map} \cgalParamDescription{writable map receiving K_G (`FT`)} \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::maximal_principal_curvature_map} \cgalParamDescription{writable map receiving k1 (`FT`)} \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::minimal_principal_curvature_map} \cgalParamDescription{writable map receiving k2 (`FT`)} \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::maximal_principal_direction_map} \cgalParamDescription{writable map receiving the unit direction of k1 (`Vector_3`)} \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::minimal_principal_direction_map} \cgalParamDescription{writable map receiving the unit direction of k2 (`Vector_3`)} \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::curvature_frame} \cgalParamDescription{`Wavejets::Curvature_frame::INITIAL_FRAME` (first fit) or `TANGENT_FRAME` (corrected fit)}
+    \cgalParamDefault{`INITIAL_FRAME`} \cgalParamNEnd
+\cgalNamedParamsEnd
+
+\return a `Wavejets::Processing_report`; unfitted points keep the values their maps had.
+\throws std::invalid_argument on the conditions of `wavejet_estimate_normals()`, or if no output map is given.
+*/
+template <typename ConcurrencyTag, typename PointRange,
+          typename NamedParameters = parameters::Default_named_parameters>
+Wavejets::Processing_report wavejet_estimate_curvatures(PointRange& points, unsigned int k,
+                                                        const NamedParameters& np = parameters::default_values())
+{
+  using namespace Wavejets::internal;
+  using parameters::get_parameter;
+  using parameters::is_default_parameter;
+  namespace wnp = Wavejets::internal_np;
+  typedef Point_set_input<PointRange, NamedParameters> Input;
+  typedef typename Input::Geom_traits::FT FT;
+  const char* fn = "wavejet_estimate_curvatures";
+
+  const bool any_output = !is_default_parameter<NamedParameters, wnp::mean_curvature_map_t>::value ||
+                          !is_default_parameter<NamedParameters, wnp::gaussian_curvature_map_t>::value ||
+                          !is_default_parameter<NamedParameters, wnp::maximal_principal_curvature_map_t>::value ||
+                          !is_default_parameter<NamedParameters, wnp::minimal_principal_curvature_map_t>::value ||
+                          !is_default_parameter<NamedParameters, wnp::maximal_principal_direction_map_t>::value ||
+                          !is_default_parameter<NamedParameters, wnp::minimal_principal_direction_map_t>::value;
+  require(any_output, fn, "no output map given (e.g. Wavejets::parameters::mean_curvature_map(m))");
+
+  const Driver_settings settings = read_driver_settings(k, np, 2, fn);
+  const Input input(points, np, true);
+
+  std::vector<Curvature_info> curvatures(input.size());
+  const Driver_run run = fit_each_point<ConcurrencyTag>(input, settings, read_callback(np),
+    [&](const Fitted_point& fp) {
+      const Frame& f = fp.fit.curvature_frame;
+      curvatures[fp.index] = graph_curvature(fp.fit.curvature_derivatives, f.u, f.v, f.n);
+    });
+
+  commit(input, run, np, [&](std::size_t i, auto& key) {
+    const Curvature_info& c = curvatures[i];
+    put_if_given(get_parameter(np, wnp::mean_curvature_map), key, FT(c.mean));
+    put_if_given(get_parameter(np, wnp::gaussian_curvature_map), key, FT(c.gaussian));
+    put_if_given(get_parameter(np, wnp::maximal_principal_curvature_map), key, FT(c.k1));
+    put_if_given(get_parameter(np, wnp::minimal_principal_curvature_map), key, FT(c.k2));
+    put_if_given(get_parameter(np, wnp::maximal_principal_direction_map), key, Input::to_vector(c.d1));
+    put_if_given(get_parameter(np, wnp::minimal_principal_direction_map), key, Input::to_vector(c.d2));
+  });
+  return run.report;
+}
+
+} // namespace CGAL
+
+#include <CGAL/enable_warnings.h>
+
+#endif // CGAL_WAVEJET_ESTIMATE_CURVATURES_H

@@ -1,0 +1,95 @@
+// Copyright (c) 2026 The CGAL Wavejets project.
+// All rights reserved.
+//
+// This file is part of the Wavejets package (https://github.com/cgal-wavejets/wavejets).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : The CGAL Wavejets developers
+
+#ifndef CGAL_WAVEJET_ESTIMATE_NORMALS_H
+#define CGAL_WAVEJET_ESTIMATE_NORMALS_H
+
+#include <CGAL/Wavejets/internal/point_set_driver.h>
+
+#include <CGAL/disable_warnings.h>
+
+namespace CGAL {
+
+/*!
+\ingroup PkgWavejetsRef
+
+Estimates the normal of every point as the normal of its Wavejet at the point: the drop-in
+counterpart of `jet_estimate_normals()` (same signature, same neighborhoods), with the
+Wavejet's tangent-plane correction. Normals are unoriented (their sign comes from PCA), unless
+`orient_with_input_normals(true)`: then each output normal points to the same side as the
+normal read from `normal_map`.
+
+\tparam ConcurrencyTag `Sequential_tag`, `Parallel_tag` or `Parallel_if_available_tag`; both give bitwise identical results.
+\tparam PointRange a model of `Range` (e.g. `std::vector`, `Point_set_3`).
+
+\param points input points; the range itself is not modified.
+\param k number of neighbors (query point excluded); with `neighbor_radius`, the maximum number
+         of neighbors kept within the radius (nearest first; 0: no limit).
+\param np optional named parameters among those below; the package's own (namespace
+       `CGAL::Wavejets::parameters`) must come before CGAL's in a chain.
+
+\cgalNamedParamsBegin
+  \cgalParamNBegin{point_map} \cgalParamDescription{a property map associating points to the elements of `points`}
+    \cgalParamDefault{`CGAL::Identity_property_map`} \cgalParamNEnd
+  \cgalParamNBegin{normal_map} \cgalParamDescription{a read-write property map where the normals are written}
+    \cgalParamExtra{required: a static assertion fails without it; a `Point_set_3` must have a normal map} \cgalParamNEnd
+  \cgalParamNBegin{neighbor_radius} \cgalParamDescription{radius Rf of the neighborhoods; 0 uses the `k` nearest
+    neighbors and Rf = distance to the farthest. No fallback: a point with too few neighbors in the radius is not fitted}
+    \cgalParamDefault{0} \cgalParamNEnd
+  \cgalParamNBegin{callback} \cgalParamDescription{`std::function<bool(double)>` called with the progress in [0,1];
+    returning `false` stops the computation and nothing is written. Under `Parallel_tag` it runs on another thread} \cgalParamNEnd
+  \cgalParamNBegin{geom_traits} \cgalParamDefault{the kernel of the point type} \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::order} \cgalParamDescription{Wavejet order K (>= 1)} \cgalParamDefault{2} \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::neighbors_per_coefficient} \cgalParamDescription{adaptive order: K is lowered
+    until the neighborhood (query included) has at least this many points per unknown, (K+1)(K+2)/2 unknowns} \cgalParamDefault{1.1} \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::minimum_order} \cgalParamDescription{lowest acceptable order; below it the point is not fitted} \cgalParamDefault{2} \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::correction_iterations} \cgalParamDescription{maximum number of re-fits in the corrected tangent plane (0: off)} \cgalParamDefault{2} \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::robust_iterations} \cgalParamDescription{Tukey IRLS passes per fit, for noisy data with outliers (0: plain least squares)} \cgalParamDefault{0} \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::orient_with_input_normals} \cgalParamDescription{orient each output normal like the input normal of `normal_map`} \cgalParamDefault{false} \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::seed_with_input_normals} \cgalParamDescription{do the first fit in the plane orthogonal to the input normal instead of the PCA plane} \cgalParamDefault{false} \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::restrict_to_consistent_normals} \cgalParamDescription{drop the neighbors whose input normal makes more than 90 degrees with the query's (needs oriented input normals)} \cgalParamDefault{false} \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::fitted_map} \cgalParamDescription{a writable property map receiving `true` for the points that were fitted} \cgalParamNEnd
+\cgalNamedParamsEnd
+
+\return a `Wavejets::Processing_report`: points that could not be fitted keep their normal and are counted.
+\throws std::invalid_argument if `k < 2` and no positive `neighbor_radius`, if `order < 1`, or if a `Point_set_3` has no normal map.
+*/
+template <typename ConcurrencyTag, typename PointRange,
+          typename NamedParameters = parameters::Default_named_parameters>
+Wavejets::Processing_report wavejet_estimate_normals(PointRange& points, unsigned int k,
+                                                     const NamedParameters& np = parameters::default_values())
+{
+  using namespace Wavejets::internal;
+  typedef Point_set_input<PointRange, NamedParameters> Input;
+  static_assert(Input::NP_helper::has_normal_map(), "Error: no normal map");
+  const char* fn = "wavejet_estimate_normals";
+  require(has_normal_map(points, np), fn, "the point set has no normal map (call add_normal_map() first)");
+
+  const Driver_settings settings = read_driver_settings(k, np, 2, fn);
+  const bool orient = parameters::choose_parameter(
+    parameters::get_parameter(np, Wavejets::internal_np::orient_with_input_normals), false);
+  const Input input(points, np,
+                    orient || settings.restrict_to_consistent_normals ||
+                      settings.fitting.normal_use == Wavejets::Normal_use::SEED_FRAME);
+
+  std::vector<Eigen::Vector3d> normals(input.size());
+  const Driver_run run = fit_each_point<ConcurrencyTag>(input, settings, read_callback(np),
+    [&](const Fitted_point& fp) { normals[fp.index] = surface_normal(fp); });
+
+  commit(input, run, np, [&](std::size_t i, auto& key) {
+    put(input.normal_map, key, Input::to_vector(normals[i]));
+  });
+  return run.report;
+}
+
+} // namespace CGAL
+
+#include <CGAL/enable_warnings.h>
+
+#endif // CGAL_WAVEJET_ESTIMATE_NORMALS_H
