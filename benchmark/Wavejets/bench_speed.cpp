@@ -1,0 +1,644 @@
+// Speed benchmark of the Wavejets point-set functions against CGAL's jet fitting.
+//
+// Samples N points uniformly on benchmark/Wavejets/data/bunny00.off (fixed seed) and times, in one
+// process, with CGAL::Real_timer:
+//   * the k-NN search alone (the package's internal Neighbor_query: tree build + N queries), the
+//     floor of any neighborhood method;
+//   * CGAL::jet_estimate_normals (degree 2/k 18, 4/k 32, 6/k 96) against
+//     CGAL::wavejet_estimate_normals at the same order and k;
+//   * CGAL::wavejet_estimate_curvatures and CGAL::wavejet_enhance_positions (K = 6);
+//   * the fitting core alone (Fitter::fit on pre-gathered neighborhoods, one thread);
+// with Sequential_tag and Parallel_tag. A scaling mode re-runs this executable once per
+// configuration (N, K, threads) so that each peak memory figure belongs to one run.
+// See README.md in this directory.
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/point_generators_3.h>
+#include <CGAL/Random.h>
+#include <CGAL/Real_timer.h>
+#include <CGAL/jet_estimate_normals.h>
+#include <CGAL/property_map.h>
+#include <CGAL/wavejet_estimate_normals.h>
+#include <CGAL/wavejet_estimate_curvatures.h>
+#include <CGAL/wavejet_enhance_positions.h>
+
+#ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+#endif
+
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <ctime>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+typedef CGAL::Exact_predicates_inexact_constructions_kernel Kernel;
+typedef Kernel::Point_3 Point;
+typedef Kernel::Vector_3 Vector;
+typedef std::pair<Point, Vector> Point_with_normal;
+typedef std::vector<Point_with_normal> Points;
+typedef CGAL::First_of_pair_property_map<Point_with_normal> Point_map;
+typedef CGAL::Second_of_pair_property_map<Point_with_normal> Normal_map;
+typedef CGAL::Surface_mesh<Point> Mesh;
+
+namespace WI = CGAL::Wavejets::internal;
+namespace WP = CGAL::Wavejets::parameters;
+
+// ---------------------------------------------------------------------------------------------
+// Utilities
+
+static std::string source_dir()
+{
+  std::string f = __FILE__;
+  const std::size_t s = f.find_last_of('/');
+  return s == std::string::npos ? std::string(".") : f.substr(0, s);
+}
+
+static double peak_rss_mb()
+{
+  rusage u;
+  getrusage(RUSAGE_SELF, &u);
+  return double(u.ru_maxrss) / 1024.; // Linux: kilobytes
+}
+
+static std::string shell_line(const std::string& cmd)
+{
+  std::string r;
+  if(FILE* p = popen(cmd.c_str(), "r"))
+  {
+    char buf[512];
+    while(fgets(buf, sizeof buf, p)) r += buf;
+    pclose(p);
+  }
+  while(!r.empty() && (r.back() == '\n' || r.back() == ' ')) r.pop_back();
+  return r;
+}
+
+static int max_threads()
+{
+#ifdef CGAL_LINKED_WITH_TBB
+  return tbb::info::default_concurrency();
+#else
+  return 1;
+#endif
+}
+
+// Limits TBB to `t` threads while alive (t <= 0: no limit).
+struct Thread_limit
+{
+#ifdef CGAL_LINKED_WITH_TBB
+  std::unique_ptr<tbb::global_control> gc;
+  explicit Thread_limit(int t)
+  {
+    if(t > 0) gc.reset(new tbb::global_control(tbb::global_control::max_allowed_parallelism, std::size_t(t)));
+  }
+#else
+  explicit Thread_limit(int) {}
+#endif
+};
+
+static Points sample_bunny(const std::string& file, std::size_t n, int seed)
+{
+  Mesh mesh;
+  std::ifstream in(file);
+  if(!in || !(in >> mesh) || mesh.number_of_faces() == 0)
+  {
+    std::cerr << "cannot read the mesh " << file << "\n";
+    std::exit(1);
+  }
+  CGAL::Random random(seed);
+  CGAL::Random_points_in_triangle_mesh_3<Mesh> generator(mesh, random);
+  Points points;
+  points.reserve(n);
+  for(std::size_t i = 0; i < n; ++i, ++generator)
+    points.emplace_back(*generator, Vector(0, 0, 0));
+  return points;
+}
+
+// Every step-th point (a subset with the same spatial extent, at lower density).
+static Points strided_subset(const Points& points, std::size_t m)
+{
+  if(m == 0 || m >= points.size()) return points;
+  Points r;
+  r.reserve(m);
+  const double step = double(points.size()) / double(m);
+  for(std::size_t i = 0; i < m; ++i) r.push_back(points[std::size_t(double(i) * step)]);
+  return r;
+}
+
+static auto np_maps() { return CGAL::parameters::point_map(Point_map()).normal_map(Normal_map()); }
+
+// ---------------------------------------------------------------------------------------------
+// Timed steps
+
+struct Row
+{
+  std::string step, mode;
+  int threads;
+  std::size_t n;
+  double seconds;
+  double rss_mb;
+  std::string against; // the row of the reference (CGAL) this one is compared with
+  double us() const { return 1e6 * seconds / double(n); }
+};
+
+template <class Tag>
+static double time_knn(const Points& points, unsigned int k)
+{
+  CGAL::Real_timer t;
+  t.start();
+  std::vector<WI::Neighbor_query::Point> pts;
+  pts.reserve(points.size());
+  for(const auto& p : points) pts.emplace_back(p.first.x(), p.first.y(), p.first.z());
+  std::vector<unsigned char> finite(points.size(), 1);
+  const WI::Neighbor_query query(pts, finite);
+  std::vector<std::size_t> chunks;
+  for(std::size_t b = 0; b < points.size(); b += 256) chunks.push_back(b);
+  std::vector<std::size_t> checksum(chunks.size(), 0);
+  CGAL::for_each<Tag>(chunks, [&](std::size_t begin) -> bool {
+    std::vector<std::size_t> nb;
+    std::vector<std::pair<double, std::size_t> > scratch;
+    const std::size_t end = (std::min)(begin + 256, points.size());
+    for(std::size_t i = begin; i < end; ++i)
+    {
+      query.neighbors(i, k, 0., nb, scratch);
+      checksum[begin / 256] += nb.size();
+    }
+    return true;
+  });
+  t.stop();
+  std::size_t total = 0;
+  for(std::size_t c : checksum) total += c;
+  if(total != points.size() * std::size_t(k)) std::cerr << "kNN checksum mismatch\n";
+  return t.time();
+}
+
+template <class Tag>
+static double time_cgal_jet(Points& points, unsigned int degree, unsigned int k)
+{
+  CGAL::Real_timer t;
+  t.start();
+  CGAL::jet_estimate_normals<Tag>(points, k, np_maps().degree_fitting(degree));
+  t.stop();
+  return t.time();
+}
+
+template <class Tag>
+static double time_wavejet_normals(Points& points, std::size_t order, unsigned int k)
+{
+  CGAL::Real_timer t;
+  t.start();
+  CGAL::wavejet_estimate_normals<Tag>(points, k, WP::order(order, np_maps()));
+  t.stop();
+  return t.time();
+}
+
+// Writable map keyed by the elements of a vector (their address gives the index).
+struct Element_index_map
+{
+  typedef Point_with_normal key_type;
+  typedef double value_type;
+  typedef double reference;
+  typedef boost::writable_property_map_tag category;
+  const Point_with_normal* base;
+  double* values;
+  friend void put(const Element_index_map& m, const Point_with_normal& key, double v) { m.values[&key - m.base] = v; }
+};
+
+template <class Tag>
+static double time_wavejet_curvatures(const Points& points, std::size_t order, unsigned int k)
+{
+  std::vector<double> H(points.size(), 0.);
+  Points copy = points;
+  CGAL::Real_timer t;
+  t.start();
+  CGAL::wavejet_estimate_curvatures<Tag>(
+    copy, k, WP::order(order, np_maps()).mean_curvature_map(Element_index_map{copy.data(), H.data()}));
+  t.stop();
+  return t.time();
+}
+
+template <class Tag>
+static double time_wavejet_enhance(Points& points, std::size_t order, unsigned int k)
+{
+  CGAL::Real_timer t;
+  t.start();
+  CGAL::wavejet_enhance_positions<Tag>(points, k, 2., WP::order(order, np_maps()));
+  t.stop();
+  return t.time();
+}
+
+// The fitting core alone: neighborhoods gathered first (not timed), then Fitter::fit on each.
+static double time_fitter(const Points& points, std::size_t m, std::size_t order, unsigned int k)
+{
+  m = (std::min)(m, points.size());
+  std::vector<WI::Neighbor_query::Point> pts;
+  for(const auto& p : points) pts.emplace_back(p.first.x(), p.first.y(), p.first.z());
+  std::vector<unsigned char> finite(points.size(), 1);
+  const WI::Neighbor_query query(pts, finite);
+  std::vector<Eigen::Vector3d> offsets;
+  offsets.reserve(m * (k + 1));
+  std::vector<std::size_t> nb;
+  std::vector<std::pair<double, std::size_t> > scratch;
+  const std::size_t step = points.size() / m;
+  for(std::size_t q = 0; q < m; ++q)
+  {
+    const std::size_t i = q * step;
+    query.neighbors(i, k, 0., nb, scratch);
+    const Eigen::Vector3d p(pts[i].x(), pts[i].y(), pts[i].z());
+    offsets.push_back(Eigen::Vector3d::Zero());
+    for(std::size_t j : nb) offsets.push_back(Eigen::Vector3d(pts[j].x(), pts[j].y(), pts[j].z()) - p);
+  }
+  const WI::Driver_settings settings = WI::read_driver_settings(k, CGAL::parameters::default_values(), order, "bench");
+  WI::Fitter fitter;
+  WI::Fit_result fit;
+  double sum = 0.;
+  CGAL::Real_timer t;
+  t.start();
+  for(std::size_t q = 0; q < m; ++q)
+  {
+    fitter.fit(offsets.data() + q * (k + 1), k + 1, order, settings.fitting, nullptr, fit);
+    sum += fit.frame.n.z();
+  }
+  t.stop();
+  if(!std::isfinite(sum)) std::cerr << "fitter produced NaN\n";
+  return t.time() * double(points.size()) / double(m); // reported over N points below
+}
+
+// ---------------------------------------------------------------------------------------------
+// Options
+
+struct Options
+{
+  std::size_t n = 100000;
+  std::size_t cgal_subset = 20000; // CGAL degree 6 / k 96 runs on this many points (0: all)
+  std::string mode = "speed";      // speed | scaling | all | single
+  std::string mesh = source_dir() + "/data/bunny00.off";
+  std::string out = source_dir() + "/results.md";
+  std::size_t scaling_max_n = 2000000;
+  bool no_write = false;
+  int seed = 42;
+  // --single: one configuration, prints "SINGLE seconds peak_rss_mb"
+  std::string fn = "enhance";
+  std::size_t order = 6;
+  unsigned int k = 96;
+  int threads = 0;
+};
+
+static void usage()
+{
+  std::cout <<
+    "bench_speed [N] [--n N] [--mode speed|scaling|all] [--cgal-subset M] [--scaling-max-n N]\n"
+    "            [--mesh file.off] [--out results.md] [--no-write] [--seed S]\n"
+    "  speed   : the comparison table at N points (default 100000); CGAL degree 6/k 96 runs on a\n"
+    "            strided subset of M points (default 20000, 0 = all), compared in us/point\n"
+    "  scaling : N from 100k to --scaling-max-n (default 2M), K from 2 to 10, 1 vs all threads,\n"
+    "            one sub-process per configuration (its own peak memory)\n"
+    "  all     : both\n";
+}
+
+static Options parse(int argc, char** argv)
+{
+  Options o;
+  for(int i = 1; i < argc; ++i)
+  {
+    const std::string a = argv[i];
+    auto next = [&]() -> std::string {
+      if(i + 1 >= argc) { usage(); std::exit(1); }
+      return argv[++i];
+    };
+    if(a == "--help" || a == "-h") { usage(); std::exit(0); }
+    else if(a == "--n") o.n = std::stoul(next());
+    else if(a == "--mode") o.mode = next();
+    else if(a == "--cgal-subset") o.cgal_subset = std::stoul(next());
+    else if(a == "--scaling-max-n") o.scaling_max_n = std::stoul(next());
+    else if(a == "--mesh") o.mesh = next();
+    else if(a == "--out") o.out = next();
+    else if(a == "--no-write") o.no_write = true;
+    else if(a == "--seed") o.seed = std::stoi(next());
+    else if(a == "--single") o.mode = "single";
+    else if(a == "--fn") o.fn = next();
+    else if(a == "--order") o.order = std::stoul(next());
+    else if(a == "--k") o.k = unsigned(std::stoul(next()));
+    else if(a == "--threads") o.threads = std::stoi(next());
+    else if(!a.empty() && a[0] != '-') o.n = std::stoul(a);
+    else { usage(); std::exit(1); }
+  }
+  return o;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Speed table
+
+static std::string fmt(double v, int prec)
+{
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(prec) << v;
+  return s.str();
+}
+
+static void run_speed(const Options& o, std::vector<Row>& rows, std::vector<std::string>& notes)
+{
+  const int T = max_threads();
+  CGAL::Real_timer ts;
+  ts.start();
+  const Points input = sample_bunny(o.mesh, o.n, o.seed);
+  ts.stop();
+  std::cout << "sampled " << input.size() << " points in " << ts.time() << " s\n";
+
+  auto add = [&](const std::string& step, const std::string& mode, int threads, std::size_t n, double s,
+                 const std::string& against = std::string()) {
+    rows.push_back(Row{step, mode, threads, n, s, peak_rss_mb(), against});
+    const Row& r = rows.back();
+    std::cout << std::left << std::setw(44) << step << std::setw(5) << mode << " threads " << threads << "  N " << n
+              << "  " << fmt(s, 3) << " s  " << fmt(r.us(), 2) << " us/pt  peak " << fmt(r.rss_mb, 0) << " MB"
+              << std::endl;
+  };
+
+  // kNN floor
+  for(unsigned int k : {18u, 32u, 96u})
+  {
+    const std::string name = "kNN only (Neighbor_query), k " + std::to_string(k);
+    add(name, "seq", 1, input.size(), time_knn<CGAL::Sequential_tag>(input, k));
+#ifdef CGAL_LINKED_WITH_TBB
+    add(name, "par", T, input.size(), time_knn<CGAL::Parallel_tag>(input, k));
+#endif
+  }
+
+  // Fitting core alone
+  {
+    const std::size_t m = (std::min<std::size_t>)(input.size(), 20000);
+    add("Fitter::fit only, K 2, k 100 (1 thread)", "seq", 1, input.size(), time_fitter(input, m, 2, 100));
+    add("Fitter::fit only, K 6, k 96 (1 thread)", "seq", 1, input.size(), time_fitter(input, m, 6, 96));
+    notes.push_back("`Fitter::fit only`: the fitting core on " + std::to_string(m) +
+                    " pre-gathered neighborhoods (k-NN not timed), one thread, scaled to us/point.");
+  }
+
+  // Normals: CGAL jets against Wavejets
+  const unsigned int orders[3] = {2, 4, 6}, ks[3] = {18, 32, 96};
+  bool bitwise = true;
+  double max_angle_deg = 0., sum_angle_deg = 0.;
+  std::size_t n_angle = 0;
+  for(int c = 0; c < 3; ++c)
+  {
+    const unsigned int d = orders[c], k = ks[c];
+    const bool subset = (d == 6 && o.cgal_subset > 0 && o.cgal_subset < input.size());
+    Points cgal_points = subset ? strided_subset(input, o.cgal_subset) : input;
+    const std::string cname = "CGAL jet_estimate_normals, degree " + std::to_string(d) + ", k " + std::to_string(k);
+    const std::string wname = "wavejet_estimate_normals, K " + std::to_string(d) + ", k " + std::to_string(k);
+    add(cname, "seq", 1, cgal_points.size(), time_cgal_jet<CGAL::Sequential_tag>(cgal_points, d, k));
+#ifdef CGAL_LINKED_WITH_TBB
+    add(cname, "par", T, cgal_points.size(), time_cgal_jet<CGAL::Parallel_tag>(cgal_points, d, k));
+#endif
+    if(subset)
+      notes.push_back("CGAL degree 6 / k 96 ran on a strided subset of " + std::to_string(cgal_points.size()) +
+                      " of the N points (same surface, lower density; cost per point does not depend on density): "
+                      "its ratio compares us/point.");
+    Points seq = input;
+    add(wname, "seq", 1, input.size(), time_wavejet_normals<CGAL::Sequential_tag>(seq, d, k), cname);
+#ifdef CGAL_LINKED_WITH_TBB
+    Points par = input;
+    add(wname, "par", T, input.size(), time_wavejet_normals<CGAL::Parallel_tag>(par, d, k), cname);
+    for(std::size_t i = 0; i < input.size(); ++i)
+      if(!(seq[i].second == par[i].second)) { bitwise = false; break; }
+#endif
+    if(!subset) // agreement with CGAL (unoriented), same neighborhoods
+      for(std::size_t i = 0; i < input.size(); ++i)
+      {
+        const Vector& a = seq[i].second; const Vector& b = cgal_points[i].second;
+        const double cs = std::abs(a * b) / std::sqrt(a.squared_length() * b.squared_length());
+        const double ang = std::acos((std::min)(1., cs)) * 180. / CGAL_PI;
+        if(std::isfinite(ang)) { max_angle_deg = (std::max)(max_angle_deg, ang); sum_angle_deg += ang; ++n_angle; }
+      }
+  }
+#ifdef CGAL_LINKED_WITH_TBB
+  notes.push_back(std::string("Wavejet normals, Sequential_tag vs Parallel_tag: ") +
+                  (bitwise ? "bitwise identical" : "DIFFERENT"));
+#endif
+  if(n_angle)
+    notes.push_back("Angle between Wavejet and CGAL jet normals (degrees 2 and 4, same k, unoriented): mean " +
+                    fmt(sum_angle_deg / double(n_angle), 3) + " deg, max " + fmt(max_angle_deg, 2) +
+                    " deg (the Wavejet normal is that of the corrected tangent frame, CGAL's that of the first fit).");
+
+  // Curvatures and position enhancement
+  for(int c : {0, 2})
+  {
+    const std::string name = "wavejet_estimate_curvatures, K " + std::to_string(orders[c]) + ", k " + std::to_string(ks[c]);
+    add(name, "seq", 1, input.size(), time_wavejet_curvatures<CGAL::Sequential_tag>(input, orders[c], ks[c]));
+#ifdef CGAL_LINKED_WITH_TBB
+    add(name, "par", T, input.size(), time_wavejet_curvatures<CGAL::Parallel_tag>(input, orders[c], ks[c]));
+#endif
+  }
+  {
+    const std::string name = "wavejet_enhance_positions, K 6, k 96";
+    Points a = input;
+    add(name, "seq", 1, input.size(), time_wavejet_enhance<CGAL::Sequential_tag>(a, 6, 96));
+#ifdef CGAL_LINKED_WITH_TBB
+    Points b = input;
+    add(name, "par", T, input.size(), time_wavejet_enhance<CGAL::Parallel_tag>(b, 6, 96));
+    bool same = true;
+    for(std::size_t i = 0; i < input.size(); ++i)
+      if(!(a[i].first == b[i].first)) { same = false; break; }
+    notes.push_back(std::string("wavejet_enhance_positions, Sequential_tag vs Parallel_tag: ") +
+                    (same ? "bitwise identical" : "DIFFERENT"));
+#endif
+  }
+}
+
+static std::string speed_table(const std::vector<Row>& rows)
+{
+  std::ostringstream s;
+  s << "| step | tag | threads | N | time (s) | us / point | x faster than CGAL | par speed-up | peak RSS (MB) |\n"
+    << "|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
+  for(const Row& r : rows)
+  {
+    std::string ratio = "", speedup = "";
+    if(!r.against.empty())
+      for(const Row& c : rows)
+        if(c.step == r.against && c.mode == r.mode) ratio = fmt(c.us() / r.us(), 1) + "x";
+    if(r.mode == "par")
+      for(const Row& c : rows)
+        if(c.step == r.step && c.mode == "seq") speedup = fmt(c.seconds / r.seconds, 2) + "x";
+    s << "| " << r.step << " | " << r.mode << " | " << r.threads << " | " << r.n << " | " << fmt(r.seconds, 3)
+      << " | " << fmt(r.us(), 2) << " | " << ratio << " | " << speedup << " | " << fmt(r.rss_mb, 0) << " |\n";
+  }
+  s << "\n`peak RSS` is the process's peak (getrusage ru_maxrss) after the step: monotone over the table, "
+       "it includes the N input points and every earlier step. The scaling table gives per-run peaks.\n";
+  return s.str();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Scaling: one sub-process per configuration
+
+static int run_single(const Options& o)
+{
+  Thread_limit limit(o.threads);
+  Points points = sample_bunny(o.mesh, o.n, o.seed);
+  double s = 0.;
+  if(o.fn == "enhance")
+    s = o.threads == 1 ? time_wavejet_enhance<CGAL::Sequential_tag>(points, o.order, o.k)
+                       : time_wavejet_enhance<CGAL::Parallel_tag>(points, o.order, o.k);
+  else if(o.fn == "normals")
+    s = o.threads == 1 ? time_wavejet_normals<CGAL::Sequential_tag>(points, o.order, o.k)
+                       : time_wavejet_normals<CGAL::Parallel_tag>(points, o.order, o.k);
+  else if(o.fn == "knn")
+    s = o.threads == 1 ? time_knn<CGAL::Sequential_tag>(points, o.k) : time_knn<CGAL::Parallel_tag>(points, o.k);
+  std::cout << "SINGLE " << s << " " << peak_rss_mb() << std::endl;
+  return 0;
+}
+
+struct Scaling_row
+{
+  std::string fn;
+  std::size_t n, order;
+  unsigned int k;
+  int threads;
+  double seconds, rss_mb;
+};
+
+static bool run_child(const Options& o, const std::string& fn, std::size_t n, std::size_t order, unsigned int k,
+                      int threads, Scaling_row& row)
+{
+  std::ostringstream cmd;
+  cmd << "/proc/" << getpid() << "/exe --single --mesh '" << o.mesh << "' --seed " << o.seed << " --fn " << fn
+      << " --n " << n << " --order " << order << " --k " << k << " --threads " << threads;
+  const std::string out = shell_line(cmd.str());
+  const std::size_t p = out.rfind("SINGLE ");
+  if(p == std::string::npos) { std::cerr << "child failed: " << cmd.str() << "\n" << out << "\n"; return false; }
+  std::istringstream in(out.substr(p + 7));
+  row = Scaling_row{fn, n, order, k, threads, 0., 0.};
+  in >> row.seconds >> row.rss_mb;
+  std::cout << std::left << std::setw(8) << fn << " N " << std::setw(8) << n << " K " << order << " k " << k
+            << " threads " << threads << "  " << fmt(row.seconds, 3) << " s  " << fmt(1e6 * row.seconds / n, 2)
+            << " us/pt  peak " << fmt(row.rss_mb, 0) << " MB" << std::endl;
+  return true;
+}
+
+static std::string run_scaling(const Options& o, std::vector<std::string>& notes)
+{
+  const int T = max_threads();
+  std::vector<Scaling_row> rows;
+  Scaling_row r;
+  std::ostringstream s;
+
+  // N: time and memory against N (K = 6, k = 96 enhancement and K = 2, k = 18 normals, all threads)
+  std::vector<std::size_t> ns;
+  for(std::size_t n : {100000ul, 200000ul, 600000ul, 1000000ul, 2000000ul, 5000000ul})
+    if(n <= o.scaling_max_n) ns.push_back(n);
+  s << "#### Time and memory against N (" << T << " threads)\n\n"
+    << "| function | K | k | N | time (s) | us / point | peak RSS (MB) | bytes / point |\n"
+    << "|---|---:|---:|---:|---:|---:|---:|---:|\n";
+  for(const char* fn : {"normals", "enhance"})
+    for(std::size_t n : ns)
+    {
+      const bool enh = std::string(fn) == "enhance";
+      if(run_child(o, fn, n, enh ? 6 : 2, enh ? 96 : 18, T, r))
+        s << "| " << (enh ? "wavejet_enhance_positions" : "wavejet_estimate_normals") << " | " << r.order << " | "
+          << r.k << " | " << n << " | " << fmt(r.seconds, 2) << " | " << fmt(1e6 * r.seconds / n, 2) << " | "
+          << fmt(r.rss_mb, 0) << " | " << fmt(r.rss_mb * 1048576. / n, 0) << " |\n";
+    }
+  if(o.scaling_max_n < 5000000)
+    notes.push_back("Not run: N above " + std::to_string(o.scaling_max_n) + " (pass --scaling-max-n 5000000).");
+
+  // K: order from 2 to 10 at fixed k = 96 (enough points for K = 10: 66 unknowns x 1.1)
+  const std::size_t nk = (std::min<std::size_t>)(o.n, 100000);
+  s << "\n#### Order K (wavejet_enhance_positions, k = 96, N = " << nk << ", " << T << " threads)\n\n"
+    << "| K | unknowns | time (s) | us / point | peak RSS (MB) |\n|---:|---:|---:|---:|---:|\n";
+  for(std::size_t K = 2; K <= 10; ++K)
+    if(run_child(o, "enhance", nk, K, 96, T, r))
+      s << "| " << K << " | " << WI::number_of_coefficients(K) << " | " << fmt(r.seconds, 2) << " | "
+        << fmt(1e6 * r.seconds / nk, 2) << " | " << fmt(r.rss_mb, 0) << " |\n";
+
+  // Threads
+  const std::size_t nt = (std::min<std::size_t>)(600000, o.scaling_max_n);
+  s << "\n#### Threads (N = " << nt << "; tbb::global_control; 1 thread = Sequential_tag)\n\n"
+    << "| function | K | k | threads | time (s) | speed-up |\n|---|---:|---:|---:|---:|---:|\n";
+  for(const char* fn : {"knn", "normals", "enhance"})
+  {
+    const std::string f = fn;
+    const std::size_t K = f == "normals" ? 2 : 6;
+    const unsigned int k = f == "normals" ? 18 : 96;
+    double t1 = 0.;
+    for(int t = 1; t <= T; t = (t == T ? T + 1 : (std::min)(2 * t, T)))
+      if(run_child(o, fn, nt, K, k, t, r))
+      {
+        if(t == 1) t1 = r.seconds;
+        s << "| " << (f == "knn" ? "kNN only" : f == "normals" ? "wavejet_estimate_normals" : "wavejet_enhance_positions")
+          << " | " << (f == "knn" ? std::string("-") : std::to_string(K)) << " | " << k << " | " << t << " | "
+          << fmt(r.seconds, 2) << " | " << fmt(t1 / r.seconds, 2) << "x |\n";
+      }
+  }
+  if(T < 4) notes.push_back("Threads: only 1 to " + std::to_string(T) + " on this machine.");
+  return s.str();
+}
+
+// ---------------------------------------------------------------------------------------------
+
+int main(int argc, char** argv)
+{
+  const Options o = parse(argc, argv);
+  if(o.mode == "single") return run_single(o);
+
+  std::ostringstream command;
+  command << "./bench_speed";
+  for(int i = 1; i < argc; ++i) command << " " << argv[i];
+
+  std::vector<Row> rows;
+  std::vector<std::string> notes;
+  std::string speed, scaling;
+  CGAL::Real_timer total;
+  total.start();
+  if(o.mode == "speed" || o.mode == "all")
+  {
+    run_speed(o, rows, notes);
+    speed = speed_table(rows);
+  }
+  if(o.mode == "scaling" || o.mode == "all") scaling = run_scaling(o, notes);
+  total.stop();
+
+  std::ostringstream md;
+  const std::time_t now = std::time(nullptr);
+  char date[64];
+  std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
+  md << "# Wavejets speed benchmark\n\n"
+     << "* Date: " << date << "\n"
+     << "* Command: `" << command.str() << "` (from the build directory, built with `-DCMAKE_BUILD_TYPE=Release`)\n"
+     << "* Machine: " << shell_line("lscpu | sed -n 's/^Model name: *//p' | head -1") << ", "
+     << std::thread::hardware_concurrency() << " hardware threads ("
+     << shell_line("lscpu | sed -n 's/^Core(s) per socket: *//p' | head -1") << " cores per socket), "
+     << shell_line("awk '/MemTotal/ {printf \"%.1f GB\", $2/1048576}' /proc/meminfo") << " RAM; TBB threads: "
+     << max_threads() << "\n"
+     << "* Git commit: " << shell_line("git -C '" + source_dir() + "' rev-parse --short HEAD 2>/dev/null") << "\n"
+     << "* Input: N = " << o.n << " points sampled uniformly on `data/bunny00.off` (CGAL::Random_points_in_triangle_mesh_3, "
+     << "CGAL::Random seed " << o.seed << ")\n"
+     << "* Total benchmark time: " << fmt(total.time(), 1) << " s\n\n";
+  if(!speed.empty()) md << "## Speed (us per point; `seq` = Sequential_tag, `par` = Parallel_tag)\n\n" << speed << "\n";
+  if(!scaling.empty()) md << "## Scaling\n\n" << scaling << "\n";
+  if(!notes.empty())
+  {
+    md << "## Notes\n\n";
+    for(const std::string& n : notes) md << "* " << n << "\n";
+  }
+  std::cout << "\n" << md.str();
+  if(!o.no_write)
+  {
+    std::ofstream f(o.out);
+    f << md.str();
+    std::cout << "\nwritten to " << o.out << "\n";
+  }
+  return 0;
+}
