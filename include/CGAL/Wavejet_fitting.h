@@ -41,7 +41,7 @@ f_{k,n} r^k e^{i n theta} over the tangent plane, to a point and its neighbors
 the first point of the range is the point where the Wavejet is computed, the others are its
 neighbors, and the result is a `Wavejet_form`.
 
-The fit follows `WAVEJETS_MATH.md`: PCA frame (or a seed normal), coordinates rescaled by the
+The fit (see \ref Wavejets_fitting in the user manual) uses a PCA frame (or a seed normal), coordinates rescaled by the
 neighborhood radius Rf, least squares by Householder QR in the real basis r^k cos(n theta),
 r^k sin(n theta), adaptive order (the order is lowered until there are at least
 `neighbors_per_coefficient * (K+1)(K+2)/2` points and the system has full rank), optional
@@ -52,6 +52,9 @@ Tukey IRLS, and re-fits in the corrected tangent plane (keeping the frame of sma
 \tparam DataKernel kernel of the input points and of the `Wavejet_form` (e.g. `Epick`).
 \tparam LocalKernel kernel with `double` number type used for `pca_basis()`; default `Simple_cartesian<double>`.
 
+The optional settings that `Monge_via_jet_fitting` has no equivalent for are grouped in a
+`Wavejets::Fitting_options`, given to the constructor or changed through `options()`.
+
 One instance must not be used by two threads at the same time; it keeps scratch memory between
 calls, so reusing one instance for many points avoids allocations.
 */
@@ -59,12 +62,22 @@ template <class DataKernel, class LocalKernel = Simple_cartesian<double> >
 class Wavejet_fitting
 {
 public:
+  /// \name Types
+  /// @{
+
+  /// The kernel of the input points and of `Wavejet_form`.
   typedef DataKernel Data_kernel;
+  /// The kernel of `pca_basis()` and `condition_number()`.
   typedef LocalKernel Local_kernel;
+  /// Number type of `Local_kernel`.
   typedef typename Local_kernel::FT FT;
+  /// Point type of `Local_kernel`.
   typedef typename Local_kernel::Point_3 Point_3;
+  /// Vector type of `Local_kernel`.
   typedef typename Local_kernel::Vector_3 Vector_3;
+  /// Number type of `Data_kernel`.
   typedef typename Data_kernel::FT DFT;
+  /// @}
 
   static_assert(std::is_convertible<double, FT>::value, "Local_kernel::FT must be constructible from double");
 
@@ -76,11 +89,20 @@ public:
   class Wavejet_form
   {
   public:
-    typedef typename Data_kernel::FT FT;
-    typedef typename Data_kernel::Point_3 Point_3;
-    typedef typename Data_kernel::Vector_3 Vector_3;
-    typedef std::complex<double> Complex;
+    /// \name Types
+    /// @{
 
+    /// Number type of `Data_kernel`.
+    typedef typename Data_kernel::FT FT;
+    /// Point type of `Data_kernel`.
+    typedef typename Data_kernel::Point_3 Point_3;
+    /// Vector type of `Data_kernel`.
+    typedef typename Data_kernel::Vector_3 Vector_3;
+    /// Type of the complex coefficients f_{k,n} and a_n(s).
+    typedef std::complex<double> Complex;
+    /// @}
+
+    /// Creates an invalid form (`is_valid() == false`): origin at the origin, null vectors, no coefficients.
     Wavejet_form()
       : m_origin(ORIGIN), m_d1(NULL_VECTOR), m_d2(NULL_VECTOR), m_normal(NULL_VECTOR),
         m_u(NULL_VECTOR), m_v(NULL_VECTOR), m_frame_normal(NULL_VECTOR)
@@ -88,7 +110,10 @@ public:
 
     /// \name Status
     /// @{
+
+    /// Outcome of the fit: `Wavejets::Fit_status::SUCCESS`, or why no Wavejet could be fitted.
     Wavejets::Fit_status status() const { return m_status; }
+    /// `status() == Wavejets::Fit_status::SUCCESS`; all other quantities are meaningful only then.
     bool is_valid() const { return m_status == Wavejets::Fit_status::SUCCESS; }
     /// Order K actually fitted (after adaptive reduction); 0 if the fit failed.
     std::size_t order() const { return m_order; }
@@ -104,31 +129,40 @@ public:
 
     /// \name Geometry (data kernel types)
     /// @{
+
     /// Point of the Wavejet surface above the query point p: p + f_{0,0} n (n the frame normal).
     Point_3 origin() const { return m_origin; }
+    /// Writable access to `origin()`.
     Point_3& origin() { return m_origin; }
     /// Unit normal of the Wavejet surface at `origin()` (the frame normal tilted by the residual f_{1,+-1}).
     Vector_3 normal_direction() const { return m_normal; }
+    /// Writable access to `normal_direction()`.
     Vector_3& normal_direction() { return m_normal; }
     /// First axis u of the final tangent frame: theta = 0 along u.
     Vector_3 first_tangent_direction() const { return m_u; }
+    /// Writable access to `first_tangent_direction()`.
     Vector_3& first_tangent_direction() { return m_u; }
     /// Second axis v = n x u of the final tangent frame.
     Vector_3 second_tangent_direction() const { return m_v; }
+    /// Writable access to `second_tangent_direction()`.
     Vector_3& second_tangent_direction() { return m_v; }
     /// Third axis n of the final tangent frame, along which heights (and coefficients) are measured.
     Vector_3 frame_normal_direction() const { return m_frame_normal; }
+    /// Writable access to `frame_normal_direction()`.
     Vector_3& frame_normal_direction() { return m_frame_normal; }
     /// Direction of the maximal principal curvature (unit, tangent; (d1, d2, normal) is direct).
     Vector_3 maximal_principal_direction() const { return m_d1; }
+    /// Writable access to `maximal_principal_direction()`.
     Vector_3& maximal_principal_direction() { return m_d1; }
     /// Direction of the minimal principal curvature.
     Vector_3 minimal_principal_direction() const { return m_d2; }
+    /// Writable access to `minimal_principal_direction()`.
     Vector_3& minimal_principal_direction() { return m_d2; }
     /// @}
 
     /// \name Coefficients (world units, final frame)
     /// @{
+
     /// f_{k,n}: z = sum f_{k,n} r^k e^{i n theta}, r and z in the input length unit, theta from
     /// `first_tangent_direction()`. Zero for any (k, n) that is not a coefficient of this Wavejet
     /// (|n| > k, parity mismatch, or k > order()).
@@ -142,6 +176,7 @@ public:
     /// f_{k,0} (k even) then alpha_{k,n}, beta_{k,n} for n = 1 or 2, ..., k, with
     /// f_{k,n} = (alpha_{k,n} - i beta_{k,n}) / 2 and f_{k,-n} = conj(f_{k,n}).
     const std::vector<double>& coefficients() const { return m_coefficients; }
+    /// Writable access to `coefficients()`.
     std::vector<double>& coefficients() { return m_coefficients; }
     /// Enclosed-area coefficient a_n(s) = sum_{k >= |n|, k = n mod 2} f_{k,n} s^{k+2}/(k+2) (length^3),
     /// all terms included (the filters drop the k = 0 and k = 1 terms themselves).
@@ -157,7 +192,10 @@ public:
 
     /// \name Curvature (signs relative to `normal_direction()`: bending toward it is positive)
     /// @{
+
+    /// Mean curvature H = (k1 + k2) / 2 (a sphere of radius R with outward normals has H = -1/R).
     FT mean_curvature() const { return FT(m_mean); }
+    /// Gaussian curvature K_G = k1 k2 (does not depend on the orientation).
     FT gaussian_curvature() const { return FT(m_gaussian); }
     /// `i == 0`: maximal, `i == 1`: minimal principal curvature.
     FT principal_curvatures(std::size_t i) const
@@ -212,6 +250,7 @@ public:
       return os;
     }
 
+    /// Writes `f` with `dump_verbose()`.
     friend std::ostream& operator<<(std::ostream& os, const Wavejet_form& f) { return f.dump_verbose(os); }
 
   private:
@@ -232,12 +271,19 @@ public:
 
   /// The options used by the next fits.
   const Wavejets::Fitting_options& options() const { return m_options; }
+  /// Writable access to the options used by the next fits.
   Wavejets::Fitting_options& options() { return m_options; }
 
   /*!
   Fits a Wavejet of order `order` (lowered if the points cannot support it) at `*begin`.
   \tparam InputIterator random-access or forward iterator with value type `Data_kernel::Point_3`.
-  \pre `order >= 1`. A range too small or degenerate gives a form with `is_valid() == false`.
+  \param begin first point of the range: the point where the Wavejet is computed.
+  \param end past-the-end iterator of the range; the points after `*begin` are its neighbors.
+  \param order requested order K; it is lowered (not below `options().minimum_order`) until the
+         range has `options().neighbors_per_coefficient * (K+1)(K+2)/2` points and the system has full rank.
+  \return the fitted form; a range too small or degenerate gives a form with `is_valid() == false`
+          and the reason in `Wavejet_form::status()`.
+  \pre `order >= 1`.
   */
   template <class InputIterator>
   Wavejet_form operator()(InputIterator begin, InputIterator end, std::size_t order)
@@ -246,8 +292,13 @@ public:
   }
 
   /*!
-  Same as above, with a normal at `*begin` that orients the frame (n . normal >= 0), or also seeds
+  Same as the other `operator()`, with a normal at `*begin` that orients the frame (the frame normal
+  makes an angle of at most 90 degrees with it), or also seeds
   the first fit's frame when `options().normal_use == Wavejets::Normal_use::SEED_FRAME`.
+  \param begin first point of the range: the point where the Wavejet is computed.
+  \param end past-the-end iterator of the range.
+  \param order requested order K (see above).
+  \param normal a normal at `*begin`; it need not be unit, only its direction is used.
   */
   template <class InputIterator>
   Wavejet_form operator()(InputIterator begin, InputIterator end, std::size_t order,

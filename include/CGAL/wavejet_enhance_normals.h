@@ -22,7 +22,8 @@ namespace CGAL {
 \ingroup PkgWavejetsRef
 
 Enhances, blurs, inverts or twists the normals of a point set by tilting each one according to
-its Wavejet's antisymmetric tendency a_{-1}(s) (Béarzi et al. 2018, Algorithm 2; WAVEJETS_MATH.md §7).
+its Wavejet's antisymmetric tendency a_{-1}(s) (Béarzi et al.\ 2018, Algorithm 2; see \ref Wavejets_filters
+in the user manual).
 In the final tangent frame (u, v, n) of each point:
 
     a_{-1}(s) = sum_{k = 3, 5, ..} f_{k,-1} s^{k+2}/(k+2)
@@ -41,8 +42,23 @@ orientation to PCA). Every new normal is computed from the original input before
 \param points input points with normals.
 \param k number of neighbors, as in `wavejet_estimate_normals()`.
 \param gain complex gain alpha_{-1} (a real number converts); finite.
-\param np the named parameters of `wavejet_enhance_positions()` except `maximum_displacement` and
-       `write_normals`; `normal_map` (read-write) is required; `order` defaults to 4.
+\param np the named parameters of `wavejet_estimate_normals()` except `orient_with_input_normals` (the
+       input normals always orient the output; `normal_map` is required and read-write), with a different
+       default for `order`, plus `evaluation_radius`:
+
+\cgalNamedParamsBegin
+  \cgalParamNBegin{Wavejets::parameters::order}
+    \cgalParamDescription{the requested Wavejet order K (lowered per point by the adaptive order); the
+                          filter needs K >= 3 to have an effect (a_{-1}(s) has no term below k = 3)}
+    \cgalParamType{`std::size_t`, `>= 1`}
+    \cgalParamDefault{4}
+  \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::evaluation_radius}
+    \cgalParamDescription{the radius s of a_{-1}(s), in world units; clamped to Rf per point (0: Rf)}
+    \cgalParamType{`double` (or `geom_traits::FT`), finite and `>= 0`}
+    \cgalParamDefault{Rf of each point}
+  \cgalParamNEnd
+\cgalNamedParamsEnd
 
 \return a `Wavejets::Processing_report`; unfitted points keep their normal.
 \throws std::invalid_argument on the conditions of `wavejet_estimate_normals()` or a non-finite gain.

@@ -23,7 +23,7 @@ namespace CGAL {
 \ingroup PkgWavejetsRef
 
 Enhances, flattens or inverts the surface details of a point set by moving every point along its
-Wavejet normal (Béarzi et al. 2018, Algorithm 1; WAVEJETS_MATH.md §6):
+Wavejet normal (Béarzi et al.\ 2018, Algorithm 1; see \ref Wavejets_filters in the user manual):
 
     p' = p + ( f_{0,0} - 2 pi (gain - 1) a_0(s) / Rf^2 ) n,    a_0(s) = sum_{k = 2, 4, ..} f_{k,0} s^{k+2}/(k+2),
 
@@ -47,10 +47,29 @@ points is reported.
        given it orients the frames, which does not change the result), plus:
 
 \cgalNamedParamsBegin
-  \cgalParamNBegin{Wavejets::parameters::order} \cgalParamDescription{Wavejet order K} \cgalParamDefault{4} \cgalParamNEnd
-  \cgalParamNBegin{Wavejets::parameters::evaluation_radius} \cgalParamDescription{s of a_0(s), world units; clamped to Rf per point} \cgalParamDefault{Rf} \cgalParamNEnd
-  \cgalParamNBegin{Wavejets::parameters::maximum_displacement} \cgalParamDescription{largest motion of a point, world units; infinity: no clamp} \cgalParamDefault{Rf/2 of each point} \cgalParamNEnd
-  \cgalParamNBegin{Wavejets::parameters::write_normals} \cgalParamDescription{also write the Wavejet normals (at the input points) to `normal_map`, oriented like the input normals} \cgalParamDefault{false} \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::order}
+    \cgalParamDescription{the requested Wavejet order K (lowered per point by the adaptive order)}
+    \cgalParamType{`std::size_t`, `>= 1`}
+    \cgalParamDefault{4}
+  \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::evaluation_radius}
+    \cgalParamDescription{the radius s of a_0(s), in world units; clamped to Rf per point (0: Rf)}
+    \cgalParamType{`double` (or `geom_traits::FT`), finite and `>= 0`}
+    \cgalParamDefault{Rf of each point}
+  \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::maximum_displacement}
+    \cgalParamDescription{the largest motion of a point, in world units; larger motions are clamped to it,
+                          keeping their direction. `std::numeric_limits<double>::infinity()` switches the clamp off}
+    \cgalParamType{`double`, `> 0`}
+    \cgalParamDefault{Rf/2 of each point}
+  \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::write_normals}
+    \cgalParamDescription{also write the Wavejet normals (at the input points, before they move) to `normal_map`,
+                          oriented like the input normals}
+    \cgalParamType{`bool`}
+    \cgalParamDefault{`false`}
+    \cgalParamExtra{needs a `normal_map` (read-write)}
+  \cgalParamNEnd
 \cgalNamedParamsEnd
 
 \return a `Wavejets::Processing_report`, with the number of clamped points.

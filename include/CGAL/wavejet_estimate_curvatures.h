@@ -39,14 +39,43 @@ otherwise the PCA normal's sign is arbitrary, so the signs of H, k1, k2 are too 
        a given normal map always orients), plus the output maps below (at least one is required) and:
 
 \cgalNamedParamsBegin
-  \cgalParamNBegin{Wavejets::parameters::mean_curvature_map} \cgalParamDescription{writable map receiving H (`FT`)} \cgalParamNEnd
-  \cgalParamNBegin{Wavejets::parameters::gaussian_curvature_map} \cgalParamDescription{writable map receiving K_G (`FT`)} \cgalParamNEnd
-  \cgalParamNBegin{Wavejets::parameters::maximal_principal_curvature_map} \cgalParamDescription{writable map receiving k1 (`FT`)} \cgalParamNEnd
-  \cgalParamNBegin{Wavejets::parameters::minimal_principal_curvature_map} \cgalParamDescription{writable map receiving k2 (`FT`)} \cgalParamNEnd
-  \cgalParamNBegin{Wavejets::parameters::maximal_principal_direction_map} \cgalParamDescription{writable map receiving the unit direction of k1 (`Vector_3`)} \cgalParamNEnd
-  \cgalParamNBegin{Wavejets::parameters::minimal_principal_direction_map} \cgalParamDescription{writable map receiving the unit direction of k2 (`Vector_3`)} \cgalParamNEnd
-  \cgalParamNBegin{Wavejets::parameters::curvature_frame} \cgalParamDescription{`Wavejets::Curvature_frame::INITIAL_FRAME` (first fit) or `TANGENT_FRAME` (corrected fit)}
-    \cgalParamDefault{`INITIAL_FRAME`} \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::mean_curvature_map}
+    \cgalParamDescription{a property map receiving the mean curvature H}
+    \cgalParamType{a model of `WritablePropertyMap` whose key type is the value type of the iterator of `PointRange` and whose value type is `geom_traits::FT`}
+    \cgalParamDefault{unused (at least one of the six maps is required)}
+  \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::gaussian_curvature_map}
+    \cgalParamDescription{a property map receiving the Gaussian curvature K_G}
+    \cgalParamType{a model of `WritablePropertyMap` whose key type is the value type of the iterator of `PointRange` and whose value type is `geom_traits::FT`}
+    \cgalParamDefault{unused (at least one of the six maps is required)}
+  \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::maximal_principal_curvature_map}
+    \cgalParamDescription{a property map receiving the maximal principal curvature k1}
+    \cgalParamType{a model of `WritablePropertyMap` whose key type is the value type of the iterator of `PointRange` and whose value type is `geom_traits::FT`}
+    \cgalParamDefault{unused (at least one of the six maps is required)}
+  \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::minimal_principal_curvature_map}
+    \cgalParamDescription{a property map receiving the minimal principal curvature k2 (k2 <= k1)}
+    \cgalParamType{a model of `WritablePropertyMap` whose key type is the value type of the iterator of `PointRange` and whose value type is `geom_traits::FT`}
+    \cgalParamDefault{unused (at least one of the six maps is required)}
+  \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::maximal_principal_direction_map}
+    \cgalParamDescription{a property map receiving the unit tangent direction of k1}
+    \cgalParamType{a model of `WritablePropertyMap` whose key type is the value type of the iterator of `PointRange` and whose value type is `geom_traits::Vector_3`}
+    \cgalParamDefault{unused (at least one of the six maps is required)}
+  \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::minimal_principal_direction_map}
+    \cgalParamDescription{a property map receiving the unit tangent direction of k2}
+    \cgalParamType{a model of `WritablePropertyMap` whose key type is the value type of the iterator of `PointRange` and whose value type is `geom_traits::Vector_3`}
+    \cgalParamDefault{unused (at least one of the six maps is required)}
+  \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::curvature_frame}
+    \cgalParamDescription{the fit the curvatures are read from: `Wavejets::Curvature_frame::INITIAL_FRAME` (the
+                          first fit, in the PCA frame: the same least-squares problem as `Monge_via_jet_fitting`)
+                          or `Wavejets::Curvature_frame::TANGENT_FRAME` (the fit in the corrected tangent frame)}
+    \cgalParamType{`CGAL::Wavejets::Curvature_frame`}
+    \cgalParamDefault{`Wavejets::Curvature_frame::INITIAL_FRAME`}
+  \cgalParamNEnd
 \cgalNamedParamsEnd
 
 \return a `Wavejets::Processing_report`; unfitted points keep the values their maps had.

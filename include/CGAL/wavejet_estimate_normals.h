@@ -35,30 +35,96 @@ normal read from `normal_map`.
        `CGAL::Wavejets::parameters`) must come before CGAL's in a chain.
 
 \cgalNamedParamsBegin
-  \cgalParamNBegin{point_map} \cgalParamDescription{a property map associating points to the elements of `points`}
-    \cgalParamDefault{`CGAL::Identity_property_map`} \cgalParamNEnd
-  \cgalParamNBegin{normal_map} \cgalParamDescription{a read-write property map where the normals are written}
-    \cgalParamExtra{required: a static assertion fails without it; a `Point_set_3` must have a normal map} \cgalParamNEnd
-  \cgalParamNBegin{neighbor_radius} \cgalParamDescription{radius Rf of the neighborhoods; 0 uses the `k` nearest
-    neighbors and Rf = distance to the farthest. No fallback: a point with too few neighbors in the radius is not fitted}
-    \cgalParamDefault{0} \cgalParamNEnd
-  \cgalParamNBegin{callback} \cgalParamDescription{`std::function<bool(double)>` called with the progress in [0,1];
-    returning `false` stops the computation and nothing is written. Under `Parallel_tag` it runs on another thread} \cgalParamNEnd
-  \cgalParamNBegin{geom_traits} \cgalParamDefault{the kernel of the point type} \cgalParamNEnd
-  \cgalParamNBegin{Wavejets::parameters::order} \cgalParamDescription{Wavejet order K (>= 1)} \cgalParamDefault{2} \cgalParamNEnd
-  \cgalParamNBegin{Wavejets::parameters::neighbors_per_coefficient} \cgalParamDescription{adaptive order: K is lowered
-    until the neighborhood (query included) has at least this many points per unknown, (K+1)(K+2)/2 unknowns} \cgalParamDefault{1.1} \cgalParamNEnd
-  \cgalParamNBegin{Wavejets::parameters::minimum_order} \cgalParamDescription{lowest acceptable order; below it the point is not fitted} \cgalParamDefault{2} \cgalParamNEnd
-  \cgalParamNBegin{Wavejets::parameters::correction_iterations} \cgalParamDescription{maximum number of re-fits in the corrected tangent plane (0: off)} \cgalParamDefault{2} \cgalParamNEnd
-  \cgalParamNBegin{Wavejets::parameters::robust_iterations} \cgalParamDescription{Tukey IRLS passes per fit, for noisy data with outliers (0: plain least squares)} \cgalParamDefault{0} \cgalParamNEnd
-  \cgalParamNBegin{Wavejets::parameters::orient_with_input_normals} \cgalParamDescription{orient each output normal like the input normal of `normal_map`} \cgalParamDefault{false} \cgalParamNEnd
-  \cgalParamNBegin{Wavejets::parameters::seed_with_input_normals} \cgalParamDescription{do the first fit in the plane orthogonal to the input normal instead of the PCA plane} \cgalParamDefault{false} \cgalParamNEnd
-  \cgalParamNBegin{Wavejets::parameters::restrict_to_consistent_normals} \cgalParamDescription{drop the neighbors whose input normal makes more than 90 degrees with the query's (needs oriented input normals)} \cgalParamDefault{false} \cgalParamNEnd
-  \cgalParamNBegin{Wavejets::parameters::fitted_map} \cgalParamDescription{a writable property map receiving `true` for the points that were fitted} \cgalParamNEnd
+  \cgalParamNBegin{point_map}
+    \cgalParamDescription{a property map associating points to the elements of `points`}
+    \cgalParamType{a model of `ReadablePropertyMap` whose key type is the value type of the iterator of
+                   `PointRange` and whose value type is `geom_traits::Point_3`}
+    \cgalParamDefault{`CGAL::Identity_property_map<geom_traits::Point_3>` (`ps.point_map()` for a `Point_set_3`)}
+  \cgalParamNEnd
+  \cgalParamNBegin{normal_map}
+    \cgalParamDescription{a property map where the normals are written (and read, with the parameters
+                          that use the input normals)}
+    \cgalParamType{a model of `ReadWritePropertyMap` whose key type is the value type of the iterator of
+                   `PointRange` and whose value type is `geom_traits::Vector_3`}
+    \cgalParamDefault{none (`ps.normal_map()` for a `Point_set_3`)}
+    \cgalParamExtra{required: a static assertion fails without it; a `Point_set_3` must have a normal map}
+  \cgalParamNEnd
+  \cgalParamNBegin{neighbor_radius}
+    \cgalParamDescription{radius Rf of the neighborhoods; 0 uses the `k` nearest neighbors and Rf = the
+                          distance to the farthest one. There is no fallback: a point with too few
+                          neighbors in the radius is not fitted (and is counted in the report)}
+    \cgalParamType{`geom_traits::FT` (converted to `double`), finite and `>= 0`}
+    \cgalParamDefault{0}
+  \cgalParamNEnd
+  \cgalParamNBegin{callback}
+    \cgalParamDescription{a mechanism to get feedback on the advancement of the algorithm while it is
+                          running and to interrupt it if needed: called with the progress in [0,1];
+                          returning `false` stops the computation, and then nothing at all is written}
+    \cgalParamType{an instance of `std::function<bool(double)>`}
+    \cgalParamDefault{unused}
+    \cgalParamExtra{under `Parallel_tag`, it is called asynchronously on a separate thread}
+  \cgalParamNEnd
+  \cgalParamNBegin{geom_traits}
+    \cgalParamDescription{an instance of a geometric traits class}
+    \cgalParamType{a model of `Kernel`}
+    \cgalParamDefault{a \cgal kernel deduced from the point type, using `CGAL::Kernel_traits`}
+  \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::order}
+    \cgalParamDescription{the requested Wavejet order K (lowered per point by the adaptive order)}
+    \cgalParamType{`std::size_t`, `>= 1`}
+    \cgalParamDefault{2}
+  \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::neighbors_per_coefficient}
+    \cgalParamDescription{adaptive order: K is lowered until the neighborhood (query included) has at
+                          least this many points per unknown, (K+1)(K+2)/2 unknowns (and the system has full rank)}
+    \cgalParamType{`double`, `>= 1`}
+    \cgalParamDefault{1.1}
+  \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::minimum_order}
+    \cgalParamDescription{lowest acceptable order; a point that cannot be fitted at this order is not fitted}
+    \cgalParamType{`std::size_t`}
+    \cgalParamDefault{2 (clamped to `order`)}
+  \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::correction_iterations}
+    \cgalParamDescription{maximum number of re-fits in the corrected tangent plane (0: off); the frame with
+                          the smallest residual tilt |f_{1,1}| is kept}
+    \cgalParamType{`std::size_t`}
+    \cgalParamDefault{2}
+  \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::robust_iterations}
+    \cgalParamDescription{Tukey IRLS passes per fit, for noisy data with outliers (0: plain least squares)}
+    \cgalParamType{`std::size_t`}
+    \cgalParamDefault{0}
+  \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::orient_with_input_normals}
+    \cgalParamDescription{orient each output normal like the input normal read from `normal_map`}
+    \cgalParamType{`bool`}
+    \cgalParamDefault{`false` (the output normals are unoriented)}
+  \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::seed_with_input_normals}
+    \cgalParamDescription{do the first fit in the plane orthogonal to the input normal instead of the PCA plane
+                          (the input normal also orients the frame)}
+    \cgalParamType{`bool`}
+    \cgalParamDefault{`false`}
+  \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::restrict_to_consistent_normals}
+    \cgalParamDescription{drop the neighbors whose input normal makes more than 90 degrees with the query's,
+                          so that a neighborhood does not mix two sheets of the surface (needs oriented input normals)}
+    \cgalParamType{`bool`}
+    \cgalParamDefault{`false`}
+  \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::fitted_map}
+    \cgalParamDescription{a property map receiving, for every point, whether a Wavejet was fitted there
+                          (not written if the `callback` interrupts the computation)}
+    \cgalParamType{a model of `WritablePropertyMap` whose key type is the value type of the iterator of
+                   `PointRange` and whose value type is `bool`}
+    \cgalParamDefault{unused}
+  \cgalParamNEnd
 \cgalNamedParamsEnd
 
 \return a `Wavejets::Processing_report`: points that could not be fitted keep their normal and are counted.
-\throws std::invalid_argument if `k < 2` and no positive `neighbor_radius`, if `order < 1`, or if a `Point_set_3` has no normal map.
+\throws std::invalid_argument if `k < 2` and no positive `neighbor_radius`, if `neighbor_radius` is negative or
+        not finite, if `order < 1`, if `neighbors_per_coefficient < 1`, or if a `Point_set_3` has no normal map.
 */
 template <typename ConcurrencyTag, typename PointRange,
           typename NamedParameters = parameters::Default_named_parameters>

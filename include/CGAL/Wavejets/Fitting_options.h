@@ -46,13 +46,17 @@ inline const char* fit_status_name(Fit_status s)
 /// with a PCA frame this is the same least-squares problem as `CGAL::Monge_via_jet_fitting`, and it
 /// was measured more accurate than the corrected frame on noise-free analytic surfaces.
 /// `TANGENT_FRAME` reads them from the fit in the final, corrected tangent frame.
-enum class Curvature_frame { INITIAL_FRAME, TANGENT_FRAME };
+enum class Curvature_frame
+{
+  INITIAL_FRAME, ///< the first fit, in the PCA frame (or the seed frame); the default
+  TANGENT_FRAME  ///< the fit in the final, corrected tangent frame
+};
 
 /// \ingroup PkgWavejetsRef
 /// How a normal passed to `Wavejet_fitting::operator()` is used.
 enum class Normal_use
 {
-  ORIENT,    ///< the frame comes from PCA; the normal only orients it (n . normal >= 0)
+  ORIENT,    ///< the frame comes from PCA; the normal only orients it (at most 90 degrees from the frame normal)
   SEED_FRAME ///< the first fit is done in the plane orthogonal to the normal (which also orients it)
 };
 
