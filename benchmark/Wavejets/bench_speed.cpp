@@ -120,7 +120,10 @@ static Points sample_bunny(const std::string& file, std::size_t n, int seed)
     std::cerr << "cannot read the mesh " << file << "\n";
     std::exit(1);
   }
+  // The generator draws the triangle with `random` but the point inside it with
+  // CGAL::get_default_random() (CGAL 5.5.1): seed both, or the sample changes from run to run.
   CGAL::Random random(seed);
+  CGAL::get_default_random() = CGAL::Random(seed + 1);
   CGAL::Random_points_in_triangle_mesh_3<Mesh> generator(mesh, random);
   Points points;
   points.reserve(n);

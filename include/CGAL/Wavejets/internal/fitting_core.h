@@ -248,15 +248,13 @@ private:
                     std::vector<double>& c)
   {
     const std::size_t B = number_of_coefficients(order);
-    basis_.resize(L * B);
+    basis_.resize(L * B); // row-major: basis_[l * B + b]
     heights_.resize(L);
-    row_.resize(B);
     c.resize(B);
     for(std::size_t l = 0; l < L; ++l)
     {
       const Eigen::Vector3d& d = scaled_[l];
-      evaluate_basis(d.dot(frame.u), d.dot(frame.v), order, row_.data());
-      for(std::size_t b = 0; b < B; ++b) basis_[b * L + l] = row_[b];
+      evaluate_basis(d.dot(frame.u), d.dot(frame.v), order, basis_.data() + l * B);
       heights_[l] = d.dot(frame.n);
     }
     if(!solve_weighted(L, B, nullptr, c))
@@ -269,7 +267,7 @@ private:
       for(std::size_t l = 0; l < L; ++l)
       {
         double z = 0.;
-        for(std::size_t b = 0; b < B; ++b) z += basis_[b * L + l] * c[b];
+        for(std::size_t b = 0; b < B; ++b) z += basis_[l * B + b] * c[b];
         residual_[l] = std::abs(heights_[l] - z);
       }
       sorted_.assign(residual_.begin(), residual_.end());
@@ -294,16 +292,28 @@ private:
   // Least squares with rows scaled by sqrt_weights (null: unweighted). Keeps basis_ intact.
   bool solve_weighted(std::size_t L, std::size_t B, const double* sqrt_weights, std::vector<double>& c)
   {
-    work_.assign(basis_.begin(), basis_.begin() + L * B);
-    rhs_.assign(heights_.begin(), heights_.begin() + L);
-    if(sqrt_weights)
+    // Row-major [A | b], row stride B + 1.
+    const std::size_t S = B + 1;
+    work_.resize(L * S);
+    for(std::size_t l = 0; l < L; ++l)
     {
-      for(std::size_t b = 0; b < B; ++b)
-        for(std::size_t l = 0; l < L; ++l) work_[b * L + l] *= sqrt_weights[l];
-      for(std::size_t l = 0; l < L; ++l) rhs_[l] *= sqrt_weights[l];
+      const double* a = basis_.data() + l * B;
+      double* r = work_.data() + l * S;
+      if(sqrt_weights)
+      {
+        const double sw = sqrt_weights[l];
+        for(std::size_t b = 0; b < B; ++b) r[b] = a[b] * sw;
+        r[B] = heights_[l] * sw;
+      }
+      else
+      {
+        for(std::size_t b = 0; b < B; ++b) r[b] = a[b];
+        r[B] = heights_[l];
+      }
     }
+    rhs_.resize(S); // scratch of the solver
     c.resize(B);
-    if(!householder_least_squares(work_.data(), L, B, rhs_.data(), c.data()))
+    if(!householder_least_squares_rows(work_.data(), L, B, rhs_.data(), c.data()))
       return false;
     for(std::size_t b = 0; b < B; ++b)
       if(!std::isfinite(c[b])) return false;
@@ -311,7 +321,7 @@ private:
     {
       Eigen::MatrixXd R = Eigen::MatrixXd::Zero(B, B);
       for(std::size_t j = 0; j < B; ++j)
-        for(std::size_t i = 0; i <= j; ++i) R(i, j) = work_[j * L + i];
+        for(std::size_t i = 0; i <= j; ++i) R(i, j) = work_[i * S + j];
       Eigen::JacobiSVD<Eigen::MatrixXd> svd(R);
       const Eigen::VectorXd sv = svd.singularValues();
       condition_ = sv(B - 1) > 0 ? sv(0) / sv(B - 1) : std::numeric_limits<double>::infinity();
@@ -322,7 +332,7 @@ private:
   bool want_condition_ = false;
   double condition_ = 0.;
   std::vector<Eigen::Vector3d> scaled_;
-  std::vector<double> basis_, work_, heights_, rhs_, row_, residual_, sorted_, weights_;
+  std::vector<double> basis_, work_, heights_, rhs_, residual_, sorted_, weights_;
   std::vector<double> first_, trial_, best_, trial_solution_;
 };
 

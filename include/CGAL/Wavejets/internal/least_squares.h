@@ -18,6 +18,12 @@
 #include <cmath>
 #include <cstddef>
 
+#if defined(__GNUC__) || defined(__clang__) || defined(_MSC_VER)
+#define CGAL_WAVEJETS_RESTRICT __restrict
+#else
+#define CGAL_WAVEJETS_RESTRICT
+#endif
+
 namespace CGAL {
 namespace Wavejets {
 namespace internal {
@@ -69,6 +75,82 @@ inline bool householder_least_squares(double* A, std::size_t rows, std::size_t c
     double s = b[jj];
     for(std::size_t l = jj + 1; l < cols; ++l) s -= A[l * rows + jj] * c[l];
     c[jj] = s / A[jj * rows + jj];
+  }
+  return true;
+}
+
+/// w[t] = sum_{i = j}^{rows-1} M(i, j) M(i, l + t), t < W, summed in increasing i (each in its own
+/// register: no latency-bound chain through memory). Row-major M with row stride S.
+template <int W>
+inline void householder_dots(const double* M, std::size_t S, std::size_t j, std::size_t rows, std::size_t l,
+                             double* w)
+{
+  double acc[W];
+  for(int t = 0; t < W; ++t) acc[t] = 0.;
+  for(std::size_t i = j; i < rows; ++i)
+  {
+    const double vi = M[i * S + j];
+    const double* row = M + i * S + l;
+    for(int t = 0; t < W; ++t) acc[t] += vi * row[t];
+  }
+  for(int t = 0; t < W; ++t) w[t] = acc[t];
+}
+
+/// Same solver on a row-major system: `M` is rows x (cols + 1) with row stride cols + 1, the
+/// right-hand side in its last column; `w` is scratch of cols + 1 doubles. It performs exactly
+/// the floating-point operations of householder_least_squares(), in the same order (bitwise
+/// identical results), but updates the trailing columns row by row: the dot products of a
+/// reflection with all the columns are accumulated together, vectorizable across columns, instead
+/// of one latency-bound reduction per column. On return M holds R in its upper triangle.
+inline bool householder_least_squares_rows(double* M, std::size_t rows, std::size_t cols, double* w, double* c)
+{
+  if(rows < cols)
+    return false;
+  const std::size_t S = cols + 1;
+  double tail2 = 0.; // of column 0, then of the next column (accumulated during each update)
+  for(std::size_t i = 0; i < rows; ++i) tail2 += M[i * S] * M[i * S];
+  for(std::size_t j = 0; j < cols; ++j)
+  {
+    double full2 = 0.;
+    for(std::size_t i = 0; i < j; ++i) full2 += M[i * S + j] * M[i * S + j];
+    full2 += tail2;
+    const double tail = std::sqrt(tail2);
+    if(!(tail > rank_tolerance * std::sqrt(full2)))
+      return false; // also catches a zero column and NaN
+    const double ajj = M[j * S + j];
+    const double alpha = ajj >= 0 ? -tail : tail;
+    const double v0 = ajj - alpha;
+    const double vtv = tail2 - ajj * ajj + v0 * v0;
+    M[j * S + j] = v0;
+    const double beta = 2. / vtv;
+    const std::size_t l0 = j + 1, n = S - l0; // trailing columns, right-hand side included
+    double* CGAL_WAVEJETS_RESTRICT wl = w + l0;
+    std::size_t l = 0;
+    for(; l + 8 <= n; l += 8) householder_dots<8>(M, S, j, rows, l0 + l, wl + l);
+    if(l + 4 <= n) { householder_dots<4>(M, S, j, rows, l0 + l, wl + l); l += 4; }
+    if(l + 2 <= n) { householder_dots<2>(M, S, j, rows, l0 + l, wl + l); l += 2; }
+    if(l < n) householder_dots<1>(M, S, j, rows, l0 + l, wl + l);
+    for(std::size_t l = 0; l < n; ++l) wl[l] *= beta;
+    {
+      const double vi = M[j * S + j];
+      double* CGAL_WAVEJETS_RESTRICT row = M + j * S + l0;
+      for(std::size_t l = 0; l < n; ++l) row[l] -= wl[l] * vi;
+    }
+    tail2 = 0.;
+    for(std::size_t i = j + 1; i < rows; ++i)
+    {
+      const double vi = M[i * S + j];
+      double* CGAL_WAVEJETS_RESTRICT row = M + i * S + l0;
+      for(std::size_t l = 0; l < n; ++l) row[l] -= wl[l] * vi;
+      tail2 += row[0] * row[0]; // column j + 1 (the right-hand side when j + 1 == cols: unused)
+    }
+    M[j * S + j] = alpha;
+  }
+  for(std::size_t jj = cols; jj-- > 0;)
+  {
+    double s = M[jj * S + cols];
+    for(std::size_t l = jj + 1; l < cols; ++l) s -= M[jj * S + l] * c[l];
+    c[jj] = s / M[jj * S + jj];
   }
   return true;
 }
