@@ -1,0 +1,70 @@
+// Headless splat renderer of the `wavejets` tool: orthographic view, one fixed light, z-buffer,
+// shaded by the normals; PNG output through libpng. No CGAL here (plain arrays in and out).
+#ifndef WAVEJETS_DEMO_RENDER_H
+#define WAVEJETS_DEMO_RENDER_H
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace wavejets_demo {
+
+typedef std::array<double, 3> Vec3;
+
+/// A point cloud to draw: positions, normals (any orientation; shading is two-sided) and an
+/// optional scalar per point (colored with a diverging map symmetric around 0).
+struct Cloud
+{
+  std::vector<Vec3> points;
+  std::vector<Vec3> normals;
+  std::vector<double> scalar;   // empty: uniform material color
+  double spacing = 0.;          // average point spacing (world units), sets the splat size
+};
+
+struct View_options
+{
+  int width = 800, height = 800;  // size of the whole image (all panels)
+  Vec3 view = {{0., 0., 1.}};     // direction from the object toward the camera
+  Vec3 up = {{0., 1., 0.}};       // world direction shown upward (projected)
+  double splat = 1.0;             // splat radius, in average spacings
+};
+
+struct Image
+{
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> rgb;   // row-major, 3 bytes per pixel
+};
+
+/// Background color of every image (the tests check that some pixel differs from it).
+const std::array<std::uint8_t, 3> background = {{255, 255, 255}};
+
+/// Draws the clouds side by side, each in a panel of width/n x height pixels, all with one camera
+/// framed on the bounding box of all clouds (so that the panels compare). Throws std::invalid_argument.
+Image render(const std::vector<const Cloud*>& clouds, const View_options& options);
+
+/// Writes an 8-bit RGB PNG with libpng; throws std::runtime_error with the reason.
+void write_png(const Image& image, const std::string& path);
+
+/// Reads a PNG (any color type) back as 8-bit RGB; throws std::runtime_error with the reason.
+Image read_png(const std::string& path);
+
+/// Writes a file atomically: the content goes to a temporary file in the same folder, renamed over
+/// `path` by commit(); the temporary is removed if commit() is not reached, and on SIGINT/SIGTERM.
+class Output_file
+{
+public:
+  explicit Output_file(const std::string& path);   // throws std::runtime_error
+  ~Output_file();
+  Output_file(const Output_file&) = delete;
+  Output_file& operator=(const Output_file&) = delete;
+  const std::string& temporary_path() const { return tmp_; }
+  void commit();                                    // throws std::runtime_error
+private:
+  std::string path_, tmp_;
+  bool committed_ = false;
+};
+
+} // namespace wavejets_demo
+
+#endif // WAVEJETS_DEMO_RENDER_H

@@ -1,0 +1,841 @@
+// wavejets: command-line tool of the CGAL Wavejets package.
+//   wavejets normals|curvature|enhance-positions|enhance-normals IN OUT.ply [flags]
+//   wavejets render IN OUT.png [flags]      wavejets render --compare A B OUT.png [flags]
+// Run `wavejets --help` or `wavejets <command> --help` for the flags.
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Point_set_3.h>
+#include <CGAL/Point_set_3/IO.h>
+#include <CGAL/compute_average_spacing.h>
+#include <CGAL/mst_orient_normals.h>
+#include <CGAL/property_map.h>
+#include <CGAL/wavejet_enhance_normals.h>
+#include <CGAL/wavejet_enhance_positions.h>
+#include <CGAL/wavejet_estimate_curvatures.h>
+#include <CGAL/wavejet_estimate_normals.h>
+
+#ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+#endif
+
+#include "render.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <complex>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <mutex>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <tuple>
+#include <vector>
+
+#include <unistd.h>
+
+typedef CGAL::Exact_predicates_inexact_constructions_kernel Kernel;
+typedef Kernel::Point_3 Point;
+typedef Kernel::Vector_3 Vector;
+typedef CGAL::Point_set_3<Point, Vector> Point_set;
+typedef CGAL::Parallel_if_available_tag Concurrency_tag;
+namespace WP = CGAL::Wavejets::parameters;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+const char* const version = "wavejets 1.0 (CGAL Wavejets package)";
+
+// ------------------------------------------------------------------------------------------------
+// Errors: a user error (bad flag: exit 2) or a file/processing error (exit 1), one line each.
+struct Usage_error : std::runtime_error { using std::runtime_error::runtime_error; };
+struct File_error : std::runtime_error { using std::runtime_error::runtime_error; };
+
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+std::string lower_extension(const std::string& path)
+{
+  const std::size_t dot = path.find_last_of('.'), slash = path.find_last_of('/');
+  if(dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+  std::string e = path.substr(dot + 1);
+  for(char& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return e;
+}
+
+std::string format(double v, int precision = 4)
+{
+  std::ostringstream s;
+  s << std::setprecision(precision) << v;
+  return s.str();
+}
+
+// ------------------------------------------------------------------------------------------------
+// Commands and flags. The help text is generated from this table.
+enum Command_bit { NORMALS = 1, CURVATURE = 2, POSITIONS = 4, NORMAL_FILTER = 8, RENDER = 16 };
+const unsigned FITS = NORMALS | CURVATURE | POSITIONS | NORMAL_FILTER;
+
+struct Command_info { const char* name; unsigned bit; const char* synopsis; const char* summary; };
+const Command_info commands[] = {
+  {"normals", NORMALS, "IN OUT.ply", "estimate oriented normals (Wavejet normals; orientation from the input normals, else by a minimum spanning tree)"},
+  {"curvature", CURVATURE, "IN OUT.ply", "estimate mean/Gaussian/principal curvatures and principal directions as PLY scalar properties"},
+  {"enhance-positions", POSITIONS, "IN OUT.ply", "move points along their normal: gain > 1 amplifies details, [0,1) flattens, < 0 inverts"},
+  {"enhance-normals", NORMAL_FILTER, "IN OUT.ply", "tilt normals: gain > 1 exaggerates shading detail, 0 blurs, < 0 inverts, imaginary part twists"},
+  {"render", RENDER, "IN OUT.png | --compare A B OUT.png", "draw a point set (or two side by side) as shaded splats into a PNG"},
+};
+
+struct Flag_info { const char* name; const char* arg; unsigned commands; const char* help; };
+const Flag_info flags[] = {
+  {"--k", "N", FITS, "neighbors per fit (k nearest); with --radius: at most N nearest within the radius (0: no limit)"},
+  {"--radius", "R", FITS, "neighborhood radius in model units (points with too few neighbors inside are reported, not fitted)"},
+  {"--radius-factor", "F", FITS, "without --k and --radius: radius = F x average spacing to the 6 nearest neighbors (default 4)"},
+  {"--order", "K", FITS, "Wavejet order (default 2 for normals and curvature, 4 for the enhance commands)"},
+  {"--gain", "G|RE,IM", POSITIONS | NORMAL_FILTER, "filter gain (default 2); enhance-normals takes a complex gain, e.g. 0,2 for 2i (twist)"},
+  {"--evaluation-radius", "S", POSITIONS | NORMAL_FILTER, "radius s of the enclosed-area coefficients a_n(s), model units (default: the fit radius Rf)"},
+  {"--max-displacement", "D|none", POSITIONS, "clamp each point's motion to D model units (default Rf/2 per point; none: no clamp)"},
+  {"--threads", "N", FITS | RENDER, "worker threads (default: all cores; 1: sequential, same results)"},
+  {"--ascii", "", FITS, "write ASCII PLY (default: binary little-endian PLY, doubles)"},
+  {"--width", "W", RENDER, "image width in pixels, all panels together (default 800, 1600 with --compare)"},
+  {"--height", "H", RENDER, "image height in pixels (default 800)"},
+  {"--view", "X,Y,Z", RENDER, "direction from the object toward the camera, orthographic (default 0,0,1)"},
+  {"--up", "X,Y,Z", RENDER, "world direction shown upward (default 0,1,0)"},
+  {"--splat", "F", RENDER, "splat radius in average point spacings (default 1.2)"},
+  {"--color-by", "NAME", RENDER, "color by a scalar PLY property, blue < 0 < red (e.g. mean_curvature)"},
+  {"--compare", "", RENDER, "render two point sets A and B side by side with the same camera"},
+  {"--quiet", "", FITS | RENDER, "no progress bar and no summary (errors are still printed)"},
+  {"--help", "", FITS | RENDER, "show this help (-h)"},
+};
+
+const Command_info* find_command(const std::string& name)
+{
+  for(const Command_info& c : commands)
+    if(name == c.name) return &c;
+  return nullptr;
+}
+
+void print_flags(std::ostream& os, unsigned bit)
+{
+  for(const Flag_info& f : flags)
+    if(f.commands & bit) {
+      std::string lhs = std::string("  ") + f.name + (f.arg[0] ? std::string(" ") + f.arg : std::string());
+      os << std::left << std::setw(28) << lhs << " " << f.help << "\n";
+    }
+}
+
+void print_global_help(std::ostream& os)
+{
+  os << "Usage: wavejets <command> IN OUT [flags]    (wavejets <command> --help for its flags)\n\n"
+        "Wavejet surface fitting and detail enhancement of point sets (CGAL Wavejets package).\n"
+        "IN: a point set, .ply .xyz .pwn or .off (vertices); normals are used when present and\n"
+        "estimated (Wavejet normals, oriented by a minimum spanning tree) when missing. OUT.ply keeps\n"
+        "every input point, in input order, with its normal and the input's other properties.\n\n"
+        "Commands:\n";
+  for(const Command_info& c : commands)
+    os << "  " << std::left << std::setw(18) << c.name << " " << c.summary << "\n";
+  os << "\nFlags of the fitting commands:\n";
+  print_flags(os, NORMALS | CURVATURE);
+  os << "  (enhance-positions, enhance-normals also take --gain and --evaluation-radius;\n"
+        "   enhance-positions also --max-displacement; render has its own flags)\n"
+        "  --version                  print the version\n\n"
+        "Exit status: 0 success, 1 unreadable or invalid input / unwritable output (nothing written),\n"
+        "2 bad command line. Points with NaN or infinite coordinates are rejected (exit 1).\n";
+}
+
+void print_command_help(std::ostream& os, const Command_info& c)
+{
+  os << "Usage: wavejets " << c.name << " " << c.synopsis << " [flags]\n\n" << c.summary << ".\n";
+  switch(c.bit) {
+    case NORMALS:
+      os << "Writes the Wavejet normal of every point (nx ny nz) and fitted (uchar, 1 where a Wavejet was fitted).\n";
+      break;
+    case CURVATURE:
+      os << "Writes, per point (double): mean_curvature, gaussian_curvature, k1, k2 (k1 >= k2), k1_dir_x/y/z,\n"
+            "k2_dir_x/y/z (unit principal directions), quality (= mean_curvature, for MeshLab's color by\n"
+            "quality), and fitted (uchar). Signs follow the normals: H < 0 where the surface bends away from\n"
+            "the normal (convex parts with outward normals). Unfitted points get 0 and fitted = 0.\n";
+      break;
+    case POSITIONS:
+      os << "Writes the moved points, their normals re-estimated on the moved points (oriented like the\n"
+            "input), and fitted (uchar). Unfitted points do not move.\n";
+      break;
+    case NORMAL_FILTER:
+      os << "Writes the filtered normals (positions unchanged) and fitted (uchar). Unfitted points keep\n"
+            "their normal.\n";
+      break;
+    case RENDER:
+      os << "Orthographic view, one fixed light, z-buffered splats shaded by the normals (estimated when\n"
+            "the input has none). The picture is framed on the bounding box of all inputs.\n";
+      break;
+  }
+  os << "\nFlags:\n";
+  print_flags(os, c.bit);
+  if(c.bit & FITS)
+    os << "\nNeighborhoods: --k alone: k nearest neighbors; --radius (with or without --k): a fixed radius;\n"
+          "neither: a radius of --radius-factor x the average spacing.\n";
+}
+
+// ------------------------------------------------------------------------------------------------
+// Parsed command line.
+struct Options
+{
+  const Command_info* command = nullptr;
+  std::vector<std::string> files;
+  bool has_k = false;
+  unsigned int k = 0;
+  double radius = 0., radius_factor = 4.;
+  std::size_t order = 0;                 // 0: the command's default
+  bool has_gain = false;
+  std::complex<double> gain = 2.;
+  double evaluation_radius = 0.;
+  bool has_clamp = false;
+  double max_displacement = 0.;          // infinity: no clamp
+  int threads = 0;
+  bool ascii = false, quiet = false, compare = false;
+  int width = 0, height = 800;
+  wavejets_demo::Vec3 view = {{0., 0., 1.}}, up = {{0., 1., 0.}};
+  double splat = 1.2;
+  std::string color_by;
+};
+
+double parse_number(const std::string& flag, const std::string& text)
+{
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(text.c_str(), &end);
+  if(text.empty() || end != text.c_str() + text.size() || errno == ERANGE || !std::isfinite(v))
+    throw Usage_error(flag + " expects a finite number, got '" + text + "'");
+  return v;
+}
+
+long parse_integer(const std::string& flag, const std::string& text, long lo, long hi)
+{
+  char* end = nullptr;
+  errno = 0;
+  const long v = std::strtol(text.c_str(), &end, 10);
+  if(text.empty() || end != text.c_str() + text.size() || errno == ERANGE || v < lo || v > hi)
+    throw Usage_error(flag + " expects an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got '" + text + "'");
+  return v;
+}
+
+std::vector<double> parse_list(const std::string& flag, const std::string& text)
+{
+  std::vector<double> values;
+  std::size_t start = 0;
+  while(true) {
+    const std::size_t comma = text.find(',', start);
+    values.push_back(parse_number(flag, text.substr(start, comma == std::string::npos ? std::string::npos : comma - start)));
+    if(comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return values;
+}
+
+wavejets_demo::Vec3 parse_vector(const std::string& flag, const std::string& text)
+{
+  const std::vector<double> v = parse_list(flag, text);
+  if(v.size() != 3) throw Usage_error(flag + " expects X,Y,Z, got '" + text + "'");
+  if(v[0] == 0 && v[1] == 0 && v[2] == 0) throw Usage_error(flag + " must not be the zero vector");
+  return {{v[0], v[1], v[2]}};
+}
+
+Options parse_command_line(int argc, char** argv)
+{
+  Options o;
+  std::vector<std::string> args(argv + 1, argv + argc);
+  if(args.empty()) throw Usage_error("no command given (wavejets --help lists them)");
+  if(args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
+    const Command_info* c = args.size() > 1 ? find_command(args[1]) : nullptr;
+    if(c) print_command_help(std::cout, *c); else print_global_help(std::cout);
+    std::exit(EXIT_SUCCESS);
+  }
+  if(args[0] == "--version") { std::cout << version << "\n"; std::exit(EXIT_SUCCESS); }
+  o.command = find_command(args[0]);
+  if(!o.command) throw Usage_error("unknown command '" + args[0] + "' (wavejets --help lists them)");
+  const unsigned bit = o.command->bit;
+
+  for(std::size_t i = 1; i < args.size(); ++i) {
+    std::string a = args[i], value;
+    if(a == "-h") a = "--help";
+    if(a == "-k") a = "--k";
+    if(a == "-r") a = "--radius";
+    if(a == "-q") a = "--quiet";
+    if(a.size() < 2 || a[0] != '-' || (a.size() > 1 && (std::isdigit(static_cast<unsigned char>(a[1])) || a[1] == '.'))) {
+      o.files.push_back(a);
+      continue;
+    }
+    const std::size_t eq = a.find('=');
+    bool inline_value = false;
+    if(eq != std::string::npos) { value = a.substr(eq + 1); a = a.substr(0, eq); inline_value = true; }
+    const Flag_info* f = nullptr;
+    for(const Flag_info& g : flags)
+      if(a == g.name) f = &g;
+    if(!f) throw Usage_error("unknown flag " + a + " (wavejets " + o.command->name + " --help lists the flags)");
+    if(!(f->commands & bit)) throw Usage_error(std::string(f->name) + " does not apply to " + o.command->name);
+    if(f->arg[0] && !inline_value) {
+      if(i + 1 >= args.size()) throw Usage_error(a + " needs a value (" + f->arg + ")");
+      value = args[++i];
+    }
+    if(!f->arg[0] && inline_value) throw Usage_error(a + " takes no value");
+
+    if(a == "--help") { print_command_help(std::cout, *o.command); std::exit(EXIT_SUCCESS); }
+    else if(a == "--k") { o.k = unsigned(parse_integer(a, value, 0, 100000)); o.has_k = true; }
+    else if(a == "--radius") {
+      o.radius = parse_number(a, value);
+      if(o.radius <= 0) throw Usage_error("--radius must be > 0");
+    }
+    else if(a == "--radius-factor") {
+      o.radius_factor = parse_number(a, value);
+      if(o.radius_factor <= 0) throw Usage_error("--radius-factor must be > 0");
+    }
+    else if(a == "--order") o.order = std::size_t(parse_integer(a, value, 1, 20));
+    else if(a == "--gain") {
+      const std::vector<double> g = parse_list(a, value);
+      if(g.size() > 2) throw Usage_error("--gain expects G or RE,IM, got '" + value + "'");
+      o.gain = std::complex<double>(g[0], g.size() > 1 ? g[1] : 0.);
+      if(bit == POSITIONS && o.gain.imag() != 0) throw Usage_error("enhance-positions takes a real gain");
+      o.has_gain = true;
+    }
+    else if(a == "--evaluation-radius") {
+      o.evaluation_radius = parse_number(a, value);
+      if(o.evaluation_radius <= 0) throw Usage_error("--evaluation-radius must be > 0");
+    }
+    else if(a == "--max-displacement") {
+      o.has_clamp = true;
+      if(value == "none") o.max_displacement = std::numeric_limits<double>::infinity();
+      else {
+        o.max_displacement = parse_number(a, value);
+        if(o.max_displacement <= 0) throw Usage_error("--max-displacement must be > 0 (or none)");
+      }
+    }
+    else if(a == "--threads") o.threads = int(parse_integer(a, value, 1, 4096));
+    else if(a == "--ascii") o.ascii = true;
+    else if(a == "--quiet") o.quiet = true;
+    else if(a == "--width") o.width = int(parse_integer(a, value, 8, 16384));
+    else if(a == "--height") o.height = int(parse_integer(a, value, 8, 16384));
+    else if(a == "--view") o.view = parse_vector(a, value);
+    else if(a == "--up") o.up = parse_vector(a, value);
+    else if(a == "--splat") {
+      o.splat = parse_number(a, value);
+      if(o.splat <= 0) throw Usage_error("--splat must be > 0");
+    }
+    else if(a == "--color-by") o.color_by = value;
+    else if(a == "--compare") o.compare = true;
+  }
+  const std::size_t expected = o.compare ? 3 : 2;
+  if(o.files.size() != expected)
+    throw Usage_error(std::string(o.command->name) + " expects " + o.command->synopsis + " (got " +
+                      std::to_string(o.files.size()) + " file names)");
+  const std::string out_ext = lower_extension(o.files.back());
+  if(bit == RENDER && out_ext != "png") throw Usage_error("the output of render must be a .png file: " + o.files.back());
+  if(bit != RENDER && out_ext != "ply") throw Usage_error("the output must be a .ply file: " + o.files.back());
+  if(o.width == 0) o.width = o.compare ? 1600 : 800;
+  return o;
+}
+
+// ------------------------------------------------------------------------------------------------
+// Progress bar on stderr (only when it is a terminal): the package calls it from a worker thread
+// under Parallel_tag, so it only touches its own state, under a mutex.
+class Progress
+{
+public:
+  explicit Progress(bool enabled) : enabled_(enabled && isatty(2)) {}
+  std::function<bool(double)> stage(const std::string& label)
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    label_ = label;
+    start_ = Clock::now();
+    last_ = -1;
+    return [this](double x) { draw(x); return true; };
+  }
+  void done()
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if(drawn_) std::fprintf(stderr, "\r%*s\r", 72, "");
+    drawn_ = false;
+  }
+private:
+  void draw(double x)
+  {
+    if(!enabled_) return;
+    std::lock_guard<std::mutex> lock(mutex_);
+    const double t = seconds_since(start_);
+    const int percent = int(100. * std::max(0., std::min(1., x)));
+    if(t < 0.3 || percent == last_) return;   // short runs stay silent
+    last_ = percent;
+    const int width = 30, full = percent * width / 100;
+    std::string bar(std::size_t(full), '#');
+    bar.resize(width, '.');
+    std::fprintf(stderr, "\r%-22s [%s] %3d%%  %5.1f s", label_.c_str(), bar.c_str(), percent, t);
+    std::fflush(stderr);
+    drawn_ = true;
+  }
+  bool enabled_, drawn_ = false;
+  std::mutex mutex_;
+  std::string label_;
+  Clock::time_point start_;
+  int last_ = -1;
+};
+
+// ------------------------------------------------------------------------------------------------
+// Input.
+struct Input
+{
+  Point_set points;
+  bool had_normals = false;
+  double read_seconds = 0.;
+  std::string format;
+};
+
+// Number of vertices announced by a PLY header (to detect truncated files); -1 if not found.
+long ply_header_vertices(const std::string& path)
+{
+  std::ifstream is(path, std::ios::binary);
+  std::string line;
+  long n = -1;
+  for(int i = 0; i < 1000 && std::getline(is, line); ++i) {
+    std::istringstream s(line);
+    std::string a, b;
+    long c;
+    if(s >> a >> b >> c && a == "element" && b == "vertex") n = c;
+    if(line.compare(0, 10, "end_header") == 0) break;
+  }
+  return n;
+}
+
+Input read_input(const std::string& path)
+{
+  const Clock::time_point t0 = Clock::now();
+  Input in;
+  const std::string ext = lower_extension(path);
+  if(ext != "ply" && ext != "xyz" && ext != "pwn" && ext != "off")
+    throw File_error(path + ": unsupported format '." + ext + "' (expected .ply, .xyz, .pwn or .off)");
+  in.format = ext == "pwn" ? "XYZ" : ext == "off" ? "OFF" : ext == "ply" ? "PLY" : "XYZ";
+  std::ifstream is(path, std::ios::binary);
+  if(!is) throw File_error(path + ": cannot open (" + std::strerror(errno) + ")");
+  if(is.peek() == std::ifstream::traits_type::eof()) throw File_error(path + ": the file is empty");
+
+  // CGAL reports its parse errors on std::cerr: capture them, to give one line.
+  std::ostringstream cgal_messages;
+  std::streambuf* saved = std::cerr.rdbuf(cgal_messages.rdbuf());
+  bool ok = false;
+  try {
+    if(ext == "ply") ok = CGAL::IO::read_PLY(is, in.points);
+    else if(ext == "off") ok = CGAL::IO::read_OFF(is, in.points);
+    else ok = CGAL::IO::read_XYZ(is, in.points);
+  } catch(const std::exception& e) {
+    cgal_messages << e.what() << "\n";
+    ok = false;
+  }
+  std::cerr.rdbuf(saved);
+  if(!ok) {
+    std::string why = cgal_messages.str();
+    why = why.substr(0, why.find('\n'));
+    if(why.compare(0, 7, "Error: ") == 0) why = why.substr(7);
+    if(why.empty()) why = "malformed or truncated";
+    throw File_error(path + ": not a valid " + in.format + " point set (" + why + ")");
+  }
+  if(ext == "ply") {
+    const long announced = ply_header_vertices(path);
+    if(announced >= 0 && std::size_t(announced) != in.points.size())
+      throw File_error(path + ": truncated PLY (the header announces " + std::to_string(announced) +
+                       " vertices, " + std::to_string(in.points.size()) + " could be read)");
+  }
+  if(in.points.empty()) throw File_error(path + ": contains no points");
+
+  std::size_t index = 0;
+  for(Point_set::Index i : in.points) {
+    const Point& p = in.points.point(i);
+    if(!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z()))
+      throw File_error(path + ": point " + std::to_string(index) +
+                       " has a NaN or infinite coordinate (remove such points first)");
+    ++index;
+  }
+  // Normals count as present when at least one is finite and non-zero.
+  if(in.points.has_normal_map()) {
+    bool any = false;
+    for(Point_set::Index i : in.points) {
+      const Vector& n = in.points.normal(i);
+      if(std::isfinite(n.squared_length()) && n.squared_length() > 0) { any = true; break; }
+    }
+    if(!any) in.points.remove_normal_map();
+  }
+  in.had_normals = in.points.has_normal_map();
+  in.read_seconds = seconds_since(t0);
+  return in;
+}
+
+double average_spacing(const Point_set& points)
+{
+  if(points.size() < 2) return 0.;
+  const unsigned int k = unsigned(std::min<std::size_t>(6, points.size() - 1));
+  return CGAL::compute_average_spacing<Concurrency_tag>(points, k, CGAL::parameters::point_map(points.point_map()));
+}
+
+// ------------------------------------------------------------------------------------------------
+// Fitting commands.
+struct Neighborhood
+{
+  unsigned int k = 0;
+  double radius = 0.;
+  std::string description;
+};
+
+Neighborhood choose_neighborhood(const Options& o, const Point_set& points)
+{
+  Neighborhood n;
+  if(o.radius > 0) {
+    n.radius = o.radius;
+    n.k = o.has_k ? o.k : 0;
+    n.description = "radius " + format(n.radius) + (n.k ? ", at most " + std::to_string(n.k) + " neighbors" : "");
+  } else if(o.has_k) {
+    if(o.k < 2) throw Usage_error("--k must be >= 2 without --radius");
+    n.k = o.k;
+    n.description = std::to_string(n.k) + " nearest neighbors";
+  } else {
+    const double spacing = average_spacing(points);
+    if(!(spacing > 0)) throw File_error("all points coincide: no neighborhood radius can be chosen");
+    n.radius = o.radius_factor * spacing;
+    n.description = "radius " + format(n.radius) + " (" + format(o.radius_factor) + " x average spacing " + format(spacing) + ")";
+  }
+  return n;
+}
+
+// Named parameters shared by every fit: neighborhood, order, callback, maps of the point set.
+template <class Extra>
+auto fit_parameters(const Extra& extra, const Neighborhood& n, Point_set& points, const std::function<bool(double)>& cb)
+{
+  return extra.neighbor_radius(n.radius).callback(cb).point_map(points.point_map()).normal_map(points.normal_map());
+}
+
+// Writable bool property map storing into a uchar property (PLY has no bool).
+struct Fitted_map
+{
+  typedef Point_set::Index key_type;
+  typedef bool value_type;
+  typedef bool reference;
+  typedef boost::writable_property_map_tag category;
+  Point_set::Property_map<unsigned char> map;
+  friend void put(const Fitted_map& m, key_type k, bool v) { m.map[k] = v ? 1 : 0; }
+};
+
+struct Run_log
+{
+  std::vector<std::string> lines;   // joined into the summary paragraph
+  double fit_seconds = 0.;
+};
+
+// Estimates normals where the input has none, then orients them by a minimum spanning tree.
+// mst_orient_normals reorders its range, so it runs on a copy that remembers the indices.
+void ensure_oriented_normals(Point_set& points, const Neighborhood& n, std::size_t order, const Fitted_map* fitted,
+                             Progress& progress, Run_log& log)
+{
+  if(points.has_normal_map()) return;
+  points.add_normal_map(Vector(0, 0, 0));
+  const Clock::time_point t0 = Clock::now();
+  const CGAL::Wavejets::Processing_report r = fitted
+    ? CGAL::wavejet_estimate_normals<Concurrency_tag>(points, n.k,
+        fit_parameters(WP::order(order).fitted_map(*fitted), n, points, progress.stage("estimating normals")))
+    : CGAL::wavejet_estimate_normals<Concurrency_tag>(points, n.k,
+        fit_parameters(WP::order(order), n, points, progress.stage("estimating normals")));
+  progress.done();
+  typedef std::tuple<Point, Vector, std::size_t> Item;
+  std::vector<Item> items;
+  items.reserve(points.size());
+  std::size_t i = 0;
+  for(Point_set::Index idx : points) items.emplace_back(points.point(idx), points.normal(idx), i++);
+  const auto first_unoriented = CGAL::mst_orient_normals(items, 18,
+    CGAL::parameters::point_map(CGAL::Nth_of_tuple_property_map<0, Item>())
+      .normal_map(CGAL::Nth_of_tuple_property_map<1, Item>()));
+  const std::size_t unoriented = std::size_t(items.end() - first_unoriented);
+  std::vector<Point_set::Index> keys(points.begin(), points.end());
+  for(const Item& it : items) points.normal(keys[std::get<2>(it)]) = std::get<1>(it);
+  log.fit_seconds += seconds_since(t0);
+  log.lines.push_back("The input has no normals: estimated them (order " + std::to_string(order) + "; " +
+                      std::to_string(r.number_of_unfitted_points) + " not fitted) and oriented them by a minimum "
+                      "spanning tree (18 neighbors; " + std::to_string(unoriented) + " could not be oriented).");
+}
+
+std::string report_text(const CGAL::Wavejets::Processing_report& r, bool clamp)
+{
+  std::string s = std::to_string(r.number_of_fitted_points) + " points fitted, " +
+                  std::to_string(r.number_of_unfitted_points) + " not fitted (left unchanged), " +
+                  std::to_string(r.number_of_reduced_order_points) + " at reduced order";
+  if(clamp) s += ", " + std::to_string(r.number_of_clamped_points) + " displacements clamped";
+  return s;
+}
+
+std::string percentiles(const Point_set& points, Point_set::Property_map<double> m,
+                        Point_set::Property_map<unsigned char> fitted)
+{
+  std::vector<double> v;
+  for(Point_set::Index i : points) if(fitted[i]) v.push_back(m[i]);
+  if(v.empty()) return "n/a";
+  std::sort(v.begin(), v.end());
+  auto at = [&](double q) { return format(v[std::size_t(q * double(v.size() - 1))], 3); };
+  return at(0.05) + " / " + at(0.5) + " / " + at(0.95);
+}
+
+// Removes a property of our output names that the input may carry with another type.
+void drop_property(Point_set& points, const std::string& name)
+{
+  bool found;
+  Point_set::Property_map<float> f;
+  std::tie(f, found) = points.property_map<float>(name);
+  if(found) points.remove_property_map(f);
+  Point_set::Property_map<int> i;
+  std::tie(i, found) = points.property_map<int>(name);
+  if(found) points.remove_property_map(i);
+}
+
+Point_set::Property_map<double> double_property(Point_set& points, const std::string& name)
+{
+  drop_property(points, name);
+  return points.add_property_map<double>(name, 0.).first;
+}
+
+void write_output(const Point_set& points, const std::string& path, bool ascii, const std::string& comment)
+{
+  wavejets_demo::Output_file out(path);
+  {
+    std::ofstream os(out.temporary_path(), std::ios::binary);
+    if(!os) throw File_error(path + ": cannot write (" + std::strerror(errno) + ")");
+    if(ascii) { CGAL::IO::set_ascii_mode(os); os.precision(17); }
+    else CGAL::IO::set_binary_mode(os);
+    std::ostringstream cgal_messages;
+    std::streambuf* saved = std::cerr.rdbuf(cgal_messages.rdbuf());
+    const bool ok = CGAL::IO::write_PLY(os, points, comment);
+    std::cerr.rdbuf(saved);
+    os.close();
+    if(!ok || !os) throw File_error(path + ": cannot write (disk full or not writable?)");
+  }
+  out.commit();
+}
+
+int run_fit_command(const Options& o, Progress& progress)
+{
+  const Clock::time_point t0 = Clock::now();
+  const std::string& in_path = o.files[0];
+  const std::string& out_path = o.files[1];
+  Input in = read_input(in_path);
+  Point_set& points = in.points;
+  const Neighborhood n = choose_neighborhood(o, points);
+  const unsigned bit = o.command->bit;
+  const std::size_t order = o.order ? o.order : (bit == NORMALS || bit == CURVATURE ? 2 : 4);
+  Run_log log;
+
+  drop_property(points, "fitted");
+  Point_set::Property_map<unsigned char> fitted = points.add_property_map<unsigned char>("fitted", 0).first;
+  const Fitted_map fitted_map{fitted};
+
+  std::string what;
+  if(bit == NORMALS && in.had_normals) {
+    const Clock::time_point t = Clock::now();
+    const CGAL::Wavejets::Processing_report r = CGAL::wavejet_estimate_normals<Concurrency_tag>(
+      points, n.k, fit_parameters(WP::order(order).orient_with_input_normals(true).fitted_map(fitted_map), n, points,
+                                  progress.stage("normals")));
+    progress.done();
+    log.fit_seconds += seconds_since(t);
+    what = "Normals (order " + std::to_string(order) + ", oriented like the input normals): " + report_text(r, false) + ".";
+  } else if(bit == NORMALS) {
+    ensure_oriented_normals(points, n, order, &fitted_map, progress, log);
+  } else {
+    ensure_oriented_normals(points, n, 2, nullptr, progress, log);
+    const Clock::time_point t = Clock::now();
+    if(bit == CURVATURE) {
+      Point_set::Property_map<double> H = double_property(points, "mean_curvature"),
+        K = double_property(points, "gaussian_curvature"), k1 = double_property(points, "k1"),
+        k2 = double_property(points, "k2"), quality = double_property(points, "quality");
+      Point_set::Property_map<Vector> d1 = points.add_property_map<Vector>("wavejets_d1", CGAL::NULL_VECTOR).first,
+                                      d2 = points.add_property_map<Vector>("wavejets_d2", CGAL::NULL_VECTOR).first;
+      const CGAL::Wavejets::Processing_report r = CGAL::wavejet_estimate_curvatures<Concurrency_tag>(
+        points, n.k,
+        fit_parameters(WP::order(order).mean_curvature_map(H).gaussian_curvature_map(K)
+                         .maximal_principal_curvature_map(k1).minimal_principal_curvature_map(k2)
+                         .maximal_principal_direction_map(d1).minimal_principal_direction_map(d2).fitted_map(fitted_map),
+                       n, points, progress.stage("curvature")));
+      progress.done();
+      const char* axes[3] = {"x", "y", "z"};
+      for(int c = 0; c < 3; ++c) {
+        Point_set::Property_map<double> a = double_property(points, std::string("k1_dir_") + axes[c]);
+        for(Point_set::Index i : points) a[i] = d1[i][c];
+      }
+      for(int c = 0; c < 3; ++c) {
+        Point_set::Property_map<double> b = double_property(points, std::string("k2_dir_") + axes[c]);
+        for(Point_set::Index i : points) b[i] = d2[i][c];
+      }
+      points.remove_property_map(d1);
+      points.remove_property_map(d2);
+      for(Point_set::Index i : points) quality[i] = H[i];
+      what = "Curvature (order " + std::to_string(order) + "): " + report_text(r, false) +
+             ". Over the fitted points, 5% / median / 95%: H " + percentiles(points, H, fitted) + ", K " +
+             percentiles(points, K, fitted) + ", k1 " + percentiles(points, k1, fitted) + ", k2 " +
+             percentiles(points, k2, fitted) + ".";
+    } else if(bit == POSITIONS) {
+      const double gain = o.gain.real();
+      auto enhance = [&](const auto& np) {
+        return CGAL::wavejet_enhance_positions<Concurrency_tag>(points, n.k, gain,
+                 fit_parameters(np, n, points, progress.stage("enhancing positions")));
+      };
+      const CGAL::Wavejets::Processing_report r = o.has_clamp
+        ? enhance(WP::maximum_displacement(o.max_displacement).order(order).evaluation_radius(o.evaluation_radius)
+                    .write_normals(true).fitted_map(fitted_map))
+        : enhance(WP::order(order).evaluation_radius(o.evaluation_radius).write_normals(true).fitted_map(fitted_map));
+      progress.done();
+      // The normals of the result: re-fitted on the moved points, oriented like the written ones.
+      const CGAL::Wavejets::Processing_report rn = CGAL::wavejet_estimate_normals<Concurrency_tag>(
+        points, n.k, fit_parameters(WP::order(std::size_t(2)).orient_with_input_normals(true), n, points,
+                                    progress.stage("normals of the result")));
+      progress.done();
+      what = "Position enhancement (order " + std::to_string(order) + ", gain " + format(gain) + ", evaluation radius " +
+             (o.evaluation_radius > 0 ? format(o.evaluation_radius) : std::string("Rf")) + ", clamp " +
+             (!o.has_clamp ? std::string("Rf/2") : std::isinf(o.max_displacement) ? std::string("none") : format(o.max_displacement)) +
+             "): " + report_text(r, true) + "; normals re-estimated on the moved points (" +
+             std::to_string(rn.number_of_unfitted_points) + " not fitted).";
+    } else {
+      const CGAL::Wavejets::Processing_report r = CGAL::wavejet_enhance_normals<Concurrency_tag>(
+        points, n.k, o.gain,
+        fit_parameters(WP::order(order).evaluation_radius(o.evaluation_radius).fitted_map(fitted_map), n, points,
+                       progress.stage("enhancing normals")));
+      progress.done();
+      const std::string g = o.gain.imag() == 0 ? format(o.gain.real()) : format(o.gain.real()) + (o.gain.imag() < 0 ? "" : "+") + format(o.gain.imag()) + "i";
+      what = "Normal enhancement (order " + std::to_string(order) + ", gain " + g + ", evaluation radius " +
+             (o.evaluation_radius > 0 ? format(o.evaluation_radius) : std::string("Rf")) + "): " + report_text(r, false) + ".";
+    }
+    log.fit_seconds += seconds_since(t);
+  }
+
+  const Clock::time_point tw = Clock::now();
+  write_output(points, out_path, o.ascii, std::string("wavejets ") + o.command->name + " of " + in_path);
+  const double write_seconds = seconds_since(tw);
+
+  if(!o.quiet) {
+    std::ostringstream s;
+    s << std::fixed << std::setprecision(2);
+    s << o.command->name << ": read " << points.size() << " points from " << in_path << " (" << in.format << ", "
+      << (in.had_normals ? "with" : "without") << " normals) in " << in.read_seconds << " s; neighborhoods: "
+      << n.description << "; ";
+#ifdef CGAL_LINKED_WITH_TBB
+    s << tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism) << " threads. ";
+#else
+    s << "sequential (no TBB). ";
+#endif
+    for(const std::string& l : log.lines) s << l << " ";
+    if(!what.empty()) s << what << " ";
+    s << "Fitting took " << log.fit_seconds << " s. Wrote " << out_path << " (" << (o.ascii ? "ASCII" : "binary little-endian")
+      << " PLY, " << points.size() << " points in input order, properties: x y z";
+    for(const std::string& p : points.properties())
+      if(p != "index" && p != "point") s << " " << (p == "normal" ? "nx ny nz" : p);
+    s << ") in " << write_seconds << " s; total " << seconds_since(t0) << " s.";
+    std::cout << s.str() << std::endl;
+  }
+  return EXIT_SUCCESS;
+}
+
+// ------------------------------------------------------------------------------------------------
+// Rendering.
+wavejets_demo::Cloud to_cloud(const std::string& path, const Options& o, Progress& progress)
+{
+  Input in = read_input(path);
+  Point_set& points = in.points;
+  wavejets_demo::Cloud c;
+  c.spacing = average_spacing(points);
+  if(!points.has_normal_map()) {   // shading needs normals; their orientation does not matter
+    points.add_normal_map(Vector(0, 0, 0));
+    CGAL::wavejet_estimate_normals<Concurrency_tag>(points, std::min<unsigned>(18, unsigned(points.size() - 1)),
+      WP::order(std::size_t(2)).callback(progress.stage("normals for shading")).point_map(points.point_map()).normal_map(points.normal_map()));
+    progress.done();
+  }
+  if(!o.color_by.empty()) {
+    bool found;
+    Point_set::Property_map<double> d;
+    std::tie(d, found) = points.property_map<double>(o.color_by);
+    Point_set::Property_map<float> f;
+    if(!found) {
+      std::tie(f, found) = points.property_map<float>(o.color_by);
+      if(!found) throw File_error(path + ": has no scalar property '" + o.color_by + "'");
+      for(Point_set::Index i : points) c.scalar.push_back(f[i]);
+    } else
+      for(Point_set::Index i : points) c.scalar.push_back(d[i]);
+  }
+  for(Point_set::Index i : points) {
+    const Point& p = points.point(i);
+    const Vector& n = points.normal(i);
+    c.points.push_back({{p.x(), p.y(), p.z()}});
+    c.normals.push_back({{n.x(), n.y(), n.z()}});
+  }
+  return c;
+}
+
+int run_render(const Options& o, Progress& progress)
+{
+  const Clock::time_point t0 = Clock::now();
+  std::vector<wavejets_demo::Cloud> clouds;
+  for(std::size_t i = 0; i + 1 < o.files.size(); ++i) clouds.push_back(to_cloud(o.files[i], o, progress));
+  std::vector<const wavejets_demo::Cloud*> pointers;
+  for(const wavejets_demo::Cloud& c : clouds) pointers.push_back(&c);
+  wavejets_demo::View_options view;
+  view.width = o.width;
+  view.height = o.height;
+  view.view = o.view;
+  view.up = o.up;
+  view.splat = o.splat;
+  wavejets_demo::Image image;
+  try {
+    image = wavejets_demo::render(pointers, view);
+  } catch(const std::invalid_argument& e) { throw Usage_error(e.what()); }
+  const std::string& out_path = o.files.back();
+  {
+    wavejets_demo::Output_file out(out_path);
+    try {
+      wavejets_demo::write_png(image, out.temporary_path());
+    } catch(const std::exception& e) { throw File_error(out_path + ": " + e.what()); }
+    out.commit();
+  }
+  if(!o.quiet) {
+    std::ostringstream s;
+    s << std::fixed << std::setprecision(2) << "render: ";
+    if(clouds.size() == 1) s << "drew " << clouds[0].points.size() << " points of " << o.files[0];
+    else s << "compared " << o.files[0] << " (left, " << clouds[0].points.size() << " points) with " << o.files[1]
+           << " (right, " << clouds[1].points.size() << " points)";
+    s << "; wrote " << out_path << " (" << image.width << " x " << image.height << " PNG) in " << seconds_since(t0) << " s.";
+    std::cout << s.str() << std::endl;
+  }
+  return EXIT_SUCCESS;
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+  try {
+    const Options o = parse_command_line(argc, argv);
+#ifdef CGAL_LINKED_WITH_TBB
+    std::unique_ptr<tbb::global_control> threads;
+    if(o.threads > 0)
+      threads.reset(new tbb::global_control(tbb::global_control::max_allowed_parallelism, std::size_t(o.threads)));
+#endif
+    Progress progress(!o.quiet);
+    return o.command->bit == RENDER ? run_render(o, progress) : run_fit_command(o, progress);
+  } catch(const Usage_error& e) {
+    std::cerr << "wavejets: error: " << e.what() << std::endl;
+    return 2;
+  } catch(const File_error& e) {
+    std::cerr << "wavejets: error: " << e.what() << std::endl;
+    return 1;
+  } catch(const std::invalid_argument& e) {   // the package's parameter checks
+    std::cerr << "wavejets: error: " << e.what() << std::endl;
+    return 2;
+  } catch(const std::exception& e) {
+    std::cerr << "wavejets: error: " << e.what() << std::endl;
+    return 1;
+  }
+}
