@@ -294,7 +294,7 @@ private:
   {
     // Row-major [A | b], row stride B + 1.
     const std::size_t S = B + 1;
-    work_.resize(L * S);
+    work_.resize(L * S + householder_padding);
     for(std::size_t l = 0; l < L; ++l)
     {
       const double* a = basis_.data() + l * B;
@@ -311,7 +311,7 @@ private:
         r[B] = heights_[l];
       }
     }
-    rhs_.resize(S); // scratch of the solver
+    rhs_.resize(S + householder_padding); // scratch of the solver
     c.resize(B);
     if(!householder_least_squares_rows(work_.data(), L, B, rhs_.data(), c.data()))
       return false;

@@ -24,6 +24,17 @@
 #define CGAL_WAVEJETS_RESTRICT
 #endif
 
+// x86 with GCC or Clang: the row-major solver is also compiled for AVX (without FMA, so the
+// arithmetic, hence the result, is bitwise the same as the SSE2 code) and picked at run time.
+// Define CGAL_WAVEJETS_NO_AVX_DISPATCH to switch this off.
+#if (defined(__GNUC__) || defined(__clang__)) && (defined(__x86_64__) || defined(__i386__)) && \
+    !defined(CGAL_WAVEJETS_NO_AVX_DISPATCH) && !defined(__FMA__)
+#define CGAL_WAVEJETS_AVX_DISPATCH 1
+#define CGAL_WAVEJETS_KERNEL_INLINE __attribute__((always_inline)) inline
+#else
+#define CGAL_WAVEJETS_KERNEL_INLINE inline
+#endif
+
 namespace CGAL {
 namespace Wavejets {
 namespace internal {
@@ -79,10 +90,13 @@ inline bool householder_least_squares(double* A, std::size_t rows, std::size_t c
   return true;
 }
 
+/// Extra doubles after the matrix and the scratch of householder_least_squares_rows().
+constexpr std::size_t householder_padding = 16;
+
 /// w[t] = sum_{i = j}^{rows-1} M(i, j) M(i, l + t), t < W, summed in increasing i (each in its own
 /// register: no latency-bound chain through memory). Row-major M with row stride S.
 template <int W>
-inline void householder_dots(const double* M, std::size_t S, std::size_t j, std::size_t rows, std::size_t l,
+CGAL_WAVEJETS_KERNEL_INLINE void householder_dots(const double* M, std::size_t S, std::size_t j, std::size_t rows, std::size_t l,
                              double* w)
 {
   double acc[W];
@@ -96,13 +110,13 @@ inline void householder_dots(const double* M, std::size_t S, std::size_t j, std:
   for(int t = 0; t < W; ++t) w[t] = acc[t];
 }
 
-/// Same solver on a row-major system: `M` is rows x (cols + 1) with row stride cols + 1, the
-/// right-hand side in its last column; `w` is scratch of cols + 1 doubles. It performs exactly
+/// Kernel of householder_least_squares_rows(): it performs exactly
 /// the floating-point operations of householder_least_squares(), in the same order (bitwise
 /// identical results), but updates the trailing columns row by row: the dot products of a
 /// reflection with all the columns are accumulated together, vectorizable across columns, instead
 /// of one latency-bound reduction per column. On return M holds R in its upper triangle.
-inline bool householder_least_squares_rows(double* M, std::size_t rows, std::size_t cols, double* w, double* c)
+CGAL_WAVEJETS_KERNEL_INLINE bool householder_rows_kernel(double* M, std::size_t rows, std::size_t cols, double* w,
+                                                     double* c)
 {
   if(rows < cols)
     return false;
@@ -125,11 +139,16 @@ inline bool householder_least_squares_rows(double* M, std::size_t rows, std::siz
     const double beta = 2. / vtv;
     const std::size_t l0 = j + 1, n = S - l0; // trailing columns, right-hand side included
     double* CGAL_WAVEJETS_RESTRICT wl = w + l0;
+    // All the column sums of a block run side by side (independent chains); the last block is
+    // rounded up to a power of two, its extra sums (read from the padding) are ignored.
     std::size_t l = 0;
-    for(; l + 8 <= n; l += 8) householder_dots<8>(M, S, j, rows, l0 + l, wl + l);
-    if(l + 4 <= n) { householder_dots<4>(M, S, j, rows, l0 + l, wl + l); l += 4; }
-    if(l + 2 <= n) { householder_dots<2>(M, S, j, rows, l0 + l, wl + l); l += 2; }
-    if(l < n) householder_dots<1>(M, S, j, rows, l0 + l, wl + l);
+    for(; l + 16 <= n; l += 16) householder_dots<16>(M, S, j, rows, l0 + l, wl + l);
+    const std::size_t r = n - l;
+    if(r > 8) householder_dots<16>(M, S, j, rows, l0 + l, wl + l);
+    else if(r > 4) householder_dots<8>(M, S, j, rows, l0 + l, wl + l);
+    else if(r > 2) householder_dots<4>(M, S, j, rows, l0 + l, wl + l);
+    else if(r == 2) householder_dots<2>(M, S, j, rows, l0 + l, wl + l);
+    else if(r == 1) householder_dots<1>(M, S, j, rows, l0 + l, wl + l);
     for(std::size_t l = 0; l < n; ++l) wl[l] *= beta;
     {
       const double vi = M[j * S + j];
@@ -153,6 +172,28 @@ inline bool householder_least_squares_rows(double* M, std::size_t rows, std::siz
     c[jj] = s / M[jj * S + jj];
   }
   return true;
+}
+
+#ifdef CGAL_WAVEJETS_AVX_DISPATCH
+__attribute__((target("avx"))) inline bool householder_rows_avx(double* M, std::size_t rows, std::size_t cols,
+                                                                double* w, double* c)
+{
+  return householder_rows_kernel(M, rows, cols, w, c);
+}
+#endif
+
+/// Same solver on a row-major system: `M` is rows x (cols + 1) with row stride cols + 1, the
+/// right-hand side in its last column; `w` is scratch of cols + 1 doubles. Both arrays need
+/// `householder_padding` more readable doubles after their end (read and ignored). Bitwise the
+/// same result as householder_least_squares() (see householder_rows_kernel()).
+inline bool householder_least_squares_rows(double* M, std::size_t rows, std::size_t cols, double* w, double* c)
+{
+#ifdef CGAL_WAVEJETS_AVX_DISPATCH
+  static const bool avx = __builtin_cpu_supports("avx");
+  if(avx)
+    return householder_rows_avx(M, rows, cols, w, c);
+#endif
+  return householder_rows_kernel(M, rows, cols, w, c);
 }
 
 } // namespace internal
