@@ -1,21 +1,30 @@
 #!/usr/bin/env bash
-# The main job on bundled data: installs what is missing, builds in Release, then on the kitten
-# scan estimates curvature (prints statistics), enhances positions (gain 2) and normals (gain 3).
-# Writes PLY files (open them in MeshLab or CloudCompare) to the folder given as $1 (default: out/).
+# The main job on bundled data: installs what is missing, builds the `wavejets` command-line tool
+# in Release, then runs it on the kitten scan (examples/Wavejets/data/kitten.xyz): curvature,
+# position enhancement (gain 2) and normal enhancement (gain 3). Writes the PLY files (open them in
+# MeshLab or CloudCompare) and before/after PNG pictures to the folder given as $1 (default: out/).
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 out="$(mkdir -p "${1:-$root/out}" && cd "${1:-$root/out}" && pwd)"
 bash "$root/scripts/install_dependencies.sh"
 build="$root/build/release"
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DWAVEJETS_BUILD_BENCHMARKS=OFF > /dev/null
-examples="wavejet_estimate_curvatures_example wavejet_enhance_positions_example wavejet_enhance_normals_example"
-cmake --build "$build" -j2 --target $examples
+cmake --build "$build" -j2 --target wavejets
+wavejets="$build/demo/Wavejets/wavejets"
 data="$root/examples/Wavejets/data/kitten.xyz"
-bin="$build/examples/Wavejets"
+run() { echo "\$ wavejets $*"; "$wavejets" "$@"; echo; }
+
 echo "== Curvature of $data"
-"$bin/wavejet_estimate_curvatures_example" "$data" "$out/kitten_curvatures.ply"
-echo "== Position enhancement (gain 2)"
-"$bin/wavejet_enhance_positions_example" "$data" "$out/kitten_enhanced_positions.ply" 2
-echo "== Normal enhancement (gain 3)"
-"$bin/wavejet_enhance_normals_example" "$data" "$out/kitten_enhanced_normals.ply" 3
-echo "Results in $out"
+run curvature "$data" "$out/kitten_curvature.ply" --order 3
+run render "$out/kitten_curvature.ply" "$out/kitten_curvature.png" --color-by mean_curvature
+
+echo "== Position enhancement (gain 2): input left, result right"
+run enhance-positions "$data" "$out/kitten_enhanced_positions.ply" --gain 2
+run render --compare "$data" "$out/kitten_enhanced_positions.ply" "$out/kitten_enhanced_positions.png"
+
+echo "== Normal enhancement (gain 3): input left, result right"
+run enhance-normals "$data" "$out/kitten_enhanced_normals.ply" --gain 3
+run render --compare "$data" "$out/kitten_enhanced_normals.ply" "$out/kitten_enhanced_normals.png"
+
+echo "Results in $out:"
+ls -l "$out" | tail -n +2
