@@ -67,6 +67,7 @@ struct Fitting_options
 {
   /// Adaptive order: the order K is lowered until the number of points L satisfies
   /// `L >= neighbors_per_coefficient * (K+1)(K+2)/2` (the factor beta of the paper).
+  /// A value below 1 or NaN is read as 1 (the point-set functions reject it instead).
   double neighbors_per_coefficient = 1.1;
   /// Lowest order accepted by the adaptive order before the fit fails (clamped to the requested order).
   std::size_t minimum_order = 2;

@@ -86,8 +86,14 @@ public:
       max2 = (std::max)(max2, offsets[l].squaredNorm());
     }
     const std::size_t min_order = (std::min)((std::max)(options.minimum_order, std::size_t(1)), requested_order);
-    std::size_t order = requested_order;
-    const double beta = (std::max)(options.neighbors_per_coefficient, 1.);
+    // Start from the largest order whose (K+1)(K+2)/2 unknowns fit in L points (beta >= 1): an
+    // absurd requested order (e.g. 2^40) would overflow number_of_coefficients() and make the
+    // one-by-one reduction below loop for ~2^40 steps. This cap changes no result.
+    std::size_t max_order = 0;
+    while(number_of_coefficients(max_order + 1) <= L) ++max_order;
+    std::size_t order = (std::min)(requested_order, max_order);
+    // beta < 1 or NaN (possible through Fitting_options; the functions reject it) reads as 1.
+    const double beta = options.neighbors_per_coefficient >= 1. ? options.neighbors_per_coefficient : 1.;
     while(order >= min_order && double(L) < beta * double(number_of_coefficients(order)))
       --order;
     if(order < min_order || L == 0)
