@@ -41,7 +41,8 @@ orientation to PCA). Every new normal is computed from the original input before
 
 \param points input points with normals.
 \param k number of neighbors, as in `wavejet_estimate_normals()`.
-\param gain complex gain alpha_{-1} (a real number converts); finite.
+\param gain complex gain alpha_{-1} (a real number converts); finite, |gain| <= 1e100 (a larger gain
+       overflows the tilt and gives non-finite normals: it is rejected).
 \param np the named parameters of `wavejet_estimate_normals()` except `orient_with_input_normals` (the
        input normals always orient the output; `normal_map` is required and read-write), with a different
        default for `order`, plus `evaluation_radius`:
@@ -61,7 +62,7 @@ orientation to PCA). Every new normal is computed from the original input before
 \cgalNamedParamsEnd
 
 \return a `Wavejets::Processing_report`; unfitted points keep their normal.
-\throws std::invalid_argument on the conditions of `wavejet_estimate_normals()` or a non-finite gain.
+\throws std::invalid_argument on the conditions of `wavejet_estimate_normals()`, a non-finite gain or |gain| > 1e100.
 */
 template <typename ConcurrencyTag, typename PointRange,
           typename NamedParameters = parameters::Default_named_parameters>
@@ -76,7 +77,8 @@ Wavejets::Processing_report wavejet_enhance_normals(PointRange& points, unsigned
   static_assert(Input::NP_helper::has_normal_map(), "Error: no normal map");
   const char* fn = "wavejet_enhance_normals";
   require(has_normal_map(points, np), fn, "the point set has no normal map");
-  require(std::isfinite(gain.real()) && std::isfinite(gain.imag()), fn, "the gain must be finite");
+  require(std::isfinite(gain.real()) && std::isfinite(gain.imag()) && std::abs(gain) <= 1e100, fn,
+          "the gain must be finite, |gain| <= 1e100");
 
   const Driver_settings settings = read_driver_settings(k, np, 4, fn);
   const double s = to_double(choose_parameter(get_parameter(np, Wavejets::internal_np::evaluation_radius), 0.));

@@ -42,7 +42,8 @@ points is reported.
 
 \param points input points; `point_map` must be read-write.
 \param k number of neighbors, as in `wavejet_estimate_normals()`.
-\param gain the gain alpha_0 (finite).
+\param gain the gain alpha_0: finite, |gain| <= 1e100 (a larger gain overflows the motion to
+       infinity or NaN; it is rejected rather than producing non-finite points when the clamp is off).
 \param np the named parameters of `wavejet_estimate_normals()` (`normal_map` optional here: when
        given it orients the frames, which does not change the result), plus:
 
@@ -73,7 +74,7 @@ points is reported.
 \cgalNamedParamsEnd
 
 \return a `Wavejets::Processing_report`, with the number of clamped points.
-\throws std::invalid_argument on the conditions of `wavejet_estimate_normals()`, a non-finite gain,
+\throws std::invalid_argument on the conditions of `wavejet_estimate_normals()`, a non-finite gain or |gain| > 1e100,
 a `maximum_displacement` that is not positive, or `write_normals` without a normal map.
 */
 template <typename ConcurrencyTag, typename PointRange,
@@ -89,7 +90,7 @@ Wavejets::Processing_report wavejet_enhance_positions(PointRange& points, unsign
   const char* fn = "wavejet_enhance_positions";
 
   const Driver_settings settings = read_driver_settings(k, np, 4, fn);
-  require(std::isfinite(gain), fn, "the gain must be finite");
+  require(std::isfinite(gain) && std::abs(gain) <= 1e100, fn, "the gain must be finite, |gain| <= 1e100");
   const double s = to_double(choose_parameter(get_parameter(np, wnp::evaluation_radius), 0.));
   require(std::isfinite(s) && s >= 0, fn, "evaluation_radius must be finite and >= 0");
   const bool default_clamp = parameters::is_default_parameter<NamedParameters, wnp::maximum_displacement_t>::value;
