@@ -11,8 +11,10 @@
 #define CGAL_WAVEJETS_INTERNAL_LEAST_SQUARES_H
 
 // Dense least squares min ||A c - b|| by Householder QR, in place on caller-owned scratch
-// (column-major), without heap allocation. The normal equations are not used: the Wavejet
-// systems are too ill-conditioned for them.
+// (row-major, right-hand side as an extra column), without heap allocation. The normal
+// equations are not used: the Wavejet systems are too ill-conditioned for them.
+// The reflections are applied row by row so that the dot products of one reflection with all the
+// trailing columns run side by side (vectorizable), each still summed in increasing row order.
 
 #include <algorithm>
 #include <cmath>
@@ -43,53 +45,6 @@ namespace internal {
 /// is below this fraction of its norm (numerical rank test of the non-pivoted QR).
 constexpr double rank_tolerance = 1e-10;
 
-/// Solves min ||A c - b|| for the rows x cols column-major matrix `A` (leading dimension `rows`).
-/// On return `A` holds R in its upper triangle (and Householder vectors below), `b` holds Q^T b and
-/// `c[0..cols-1]` the solution. Returns false (and leaves `c` unspecified) if a column is
-/// numerically dependent on the previous ones or the system has fewer rows than columns.
-inline bool householder_least_squares(double* A, std::size_t rows, std::size_t cols, double* b, double* c)
-{
-  if(rows < cols)
-    return false;
-  for(std::size_t j = 0; j < cols; ++j)
-  {
-    double* aj = A + j * rows;
-    double full2 = 0., tail2 = 0.;
-    for(std::size_t i = 0; i < j; ++i) full2 += aj[i] * aj[i];
-    for(std::size_t i = j; i < rows; ++i) tail2 += aj[i] * aj[i];
-    full2 += tail2;
-    const double tail = std::sqrt(tail2);
-    if(!(tail > rank_tolerance * std::sqrt(full2)))
-      return false; // also catches a zero column and NaN
-    // Householder vector v = x + sign(x0)|x| e0 stored in aj[j..]; beta = 2 / v.v
-    const double alpha = aj[j] >= 0 ? -tail : tail;
-    const double v0 = aj[j] - alpha;
-    const double vtv = tail2 - aj[j] * aj[j] + v0 * v0;
-    aj[j] = v0;
-    const double beta = 2. / vtv;
-    for(std::size_t l = j + 1; l < cols; ++l)
-    {
-      double* al = A + l * rows;
-      double dot = 0.;
-      for(std::size_t i = j; i < rows; ++i) dot += aj[i] * al[i];
-      dot *= beta;
-      for(std::size_t i = j; i < rows; ++i) al[i] -= dot * aj[i];
-    }
-    double dot = 0.;
-    for(std::size_t i = j; i < rows; ++i) dot += aj[i] * b[i];
-    dot *= beta;
-    for(std::size_t i = j; i < rows; ++i) b[i] -= dot * aj[i];
-    aj[j] = alpha; // diagonal of R (the Householder vector's head is no longer needed)
-  }
-  for(std::size_t jj = cols; jj-- > 0;)
-  {
-    double s = b[jj];
-    for(std::size_t l = jj + 1; l < cols; ++l) s -= A[l * rows + jj] * c[l];
-    c[jj] = s / A[jj * rows + jj];
-  }
-  return true;
-}
-
 /// Extra doubles after the matrix and the scratch of householder_least_squares_rows().
 constexpr std::size_t householder_padding = 16;
 
@@ -110,11 +65,12 @@ CGAL_WAVEJETS_KERNEL_INLINE void householder_dots(const double* M, std::size_t S
   for(int t = 0; t < W; ++t) w[t] = acc[t];
 }
 
-/// Kernel of householder_least_squares_rows(): it performs exactly
-/// the floating-point operations of householder_least_squares(), in the same order (bitwise
-/// identical results), but updates the trailing columns row by row: the dot products of a
-/// reflection with all the columns are accumulated together, vectorizable across columns, instead
-/// of one latency-bound reduction per column. On return M holds R in its upper triangle.
+/// Kernel of householder_least_squares_rows(). Column j's reflection v = x - alpha e_j
+/// (alpha = -sign(x_j)|x|) is applied to the trailing columns; a column whose part orthogonal to
+/// the previous ones is below rank_tolerance of its norm makes the solve fail. The dot products
+/// of a reflection with all trailing columns are accumulated together (vectorizable across
+/// columns) instead of one latency-bound reduction per column. On return M holds R in its upper
+/// triangle and c the solution (back substitution).
 CGAL_WAVEJETS_KERNEL_INLINE bool householder_rows_kernel(double* M, std::size_t rows, std::size_t cols, double* w,
                                                      double* c)
 {
@@ -184,8 +140,8 @@ __attribute__((target("avx"))) inline bool householder_rows_avx(double* M, std::
 
 /// Same solver on a row-major system: `M` is rows x (cols + 1) with row stride cols + 1, the
 /// right-hand side in its last column; `w` is scratch of cols + 1 doubles. Both arrays need
-/// `householder_padding` more readable doubles after their end (read and ignored). Bitwise the
-/// same result as householder_least_squares() (see householder_rows_kernel()).
+/// `householder_padding` more readable doubles after their end (read and ignored). Returns false
+/// if the system has fewer rows than columns or is numerically rank-deficient.
 inline bool householder_least_squares_rows(double* M, std::size_t rows, std::size_t cols, double* w, double* c)
 {
 #ifdef CGAL_WAVEJETS_AVX_DISPATCH
