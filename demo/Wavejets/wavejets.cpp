@@ -152,7 +152,9 @@ void print_global_help(std::ostream& os)
 
 void print_command_help(std::ostream& os, const Command_info& c)
 {
-  os << "Usage: wavejets " << c.name << " " << c.synopsis << " [flags]\n\n" << c.summary << ".\n";
+  std::string summary = c.summary;
+  summary[0] = char(std::toupper(static_cast<unsigned char>(summary[0])));
+  os << "Usage: wavejets " << c.name << " " << c.synopsis << " [flags]\n\n" << summary << ".\n";
   switch(c.bit) {
     case NORMALS:
       os << "Writes the Wavejet normal of every point (nx ny nz) and fitted (uchar, 1 where a Wavejet was fitted).\n";
@@ -724,9 +726,9 @@ int run_fit_command(const Options& o, Progress& progress)
       << (in.had_normals ? "with" : "without") << " normals) in " << in.read_seconds << " s; neighborhoods: "
       << n.description << "; ";
 #ifdef CGAL_LINKED_WITH_TBB
-    s << tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism) << " threads. ";
+    s << "threads: " << tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism) << ". ";
 #else
-    s << "sequential (no TBB). ";
+    s << "threads: 1 (built without TBB). ";
 #endif
     for(const std::string& l : log.lines) s << l << " ";
     if(!what.empty()) s << what << " ";
