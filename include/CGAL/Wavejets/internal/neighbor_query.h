@@ -61,8 +61,9 @@ public:
     for(std::size_t i = 0; i < points.size(); ++i)
       if(in_tree[i]) indices.push_back(i);
     m_tree.insert(indices.begin(), indices.end());
-    m_tree.build();
     m_size = indices.size();
+    if(m_size > 0) // Kd_tree::build() requires points (an input of only non-finite points has none)
+      m_tree.build();
   }
 
   Neighbor_query(const Neighbor_query&) = delete;
@@ -77,6 +78,7 @@ public:
     out.clear();
     scratch.clear();
     const Point& p = m_points[i];
+    if(m_size == 0) return; // empty (unbuilt) tree
     if(radius > 0)
     {
       Sphere sphere(p, radius, 0., m_traits);
