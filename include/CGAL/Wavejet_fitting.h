@@ -85,6 +85,9 @@ public:
   The result of a fit: the Wavejet's frame, coefficients (world units) and differential quantities.
   Number types come from `DataKernel`. Default-constructed or failed forms have `is_valid() == false`;
   then `origin()` is the query point, `order()` is 0, and every other quantity is zero.
+  A valid form has only finite quantities: a fit whose world-unit coefficients or curvatures would
+  overflow (radius Rf outside [1e-20, 1e20], or a quantity among the coefficients, the curvatures and
+  the a_n(Rf) that overflows at a high order) fails with `Fit_status::OUT_OF_RANGE`.
   */
   class Wavejet_form
   {
@@ -382,6 +385,20 @@ private:
     form.m_k2 = ci.k2;
     form.m_d1 = to_vector(ci.d1);
     form.m_d2 = to_vector(ci.d2);
+    // World-unit coefficients scale as Rf^{1-k}: at tiny scales and high orders they overflow
+    // (e.g. Rf = 1e-40, K = 9). Never return a "valid" form with infinite quantities.
+    bool finite = std::isfinite(ci.mean) && std::isfinite(ci.gaussian) && std::isfinite(ci.k1) && std::isfinite(ci.k2);
+    for(double x : form.m_coefficients) finite = finite && std::isfinite(x);
+    for(int n = 0; finite && n <= int(r.order); ++n)
+      finite = std::isfinite(std::abs(form.enclosed_area_coefficient(n)));
+    if(!finite)
+    {
+      Wavejet_form failed;
+      failed.m_origin = p;
+      failed.m_status = Wavejets::Fit_status::OUT_OF_RANGE;
+      failed.m_number_of_points = form.m_number_of_points;
+      return failed;
+    }
     return form;
   }
 

@@ -22,7 +22,12 @@ enum class Fit_status
   SUCCESS = 0,           ///< a Wavejet of order >= the minimum order was fitted
   TOO_FEW_POINTS,        ///< fewer points than `neighbors_per_coefficient * (K+1)(K+2)/2` even at the minimum order
   DEGENERATE_NEIGHBORHOOD, ///< coincident, collinear or otherwise rank-deficient points, even at the minimum order
-  NON_FINITE_INPUT       ///< a coordinate (or the seed normal) is NaN or infinite
+  NON_FINITE_INPUT,      ///< a coordinate (or the seed normal) is NaN or infinite
+  /// The neighborhood radius Rf is outside [1e-20, 1e20] (or, in `Wavejet_fitting`, a world-unit
+  /// quantity overflowed): world-unit coefficients f_{k,n} scale as Rf^{1-k}, enclosed areas a_n(Rf)
+  /// as Rf^3 with terms in Rf^{k+2}, curvatures as 1/Rf, and at such scales they leave the range
+  /// of double (or lose their high orders to underflow). Rescale the input (e.g. to meters).
+  OUT_OF_RANGE
 };
 
 /// \ingroup PkgWavejetsRef
@@ -34,6 +39,7 @@ inline const char* fit_status_name(Fit_status s)
     case Fit_status::TOO_FEW_POINTS: return "too few points";
     case Fit_status::DEGENERATE_NEIGHBORHOOD: return "degenerate neighborhood";
     case Fit_status::NON_FINITE_INPUT: return "non-finite input";
+    case Fit_status::OUT_OF_RANGE: return "out of range (neighborhood too small for double)";
   }
   return "unknown";
 }

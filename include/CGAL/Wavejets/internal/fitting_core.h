@@ -102,6 +102,8 @@ public:
     const double radius = options.neighborhood_radius > 0 ? options.neighborhood_radius : std::sqrt(max2);
     if(!(radius > 0.) || !std::isfinite(radius))
       return fail(out, Fit_status::DEGENERATE_NEIGHBORHOOD);
+    if(radius < 1e-20 || radius > 1e20) // outputs in world units would overflow: Fit_status::OUT_OF_RANGE
+      return fail(out, Fit_status::OUT_OF_RANGE);
     out.radius = radius;
 
     // Rescaled offsets: all later work is in units of Rf.
