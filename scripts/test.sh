@@ -12,7 +12,7 @@ cmake --build "$build" -j2
 
 if [ "${WAVEJETS_SKIP_SANITIZERS:-0}" != 1 ]; then
   # Tests only (WAVEJETS_TESTS_ONLY: no examples, demo or benchmarks), Debug at -O1. Every UBSan
-  # finding is fatal; test_fuzz runs fewer fits under sanitizers (20000, see test_fuzz.cpp).
+  # finding is fatal; test_fuzz runs fewer fits under sanitizers (100000, see test_fuzz.cpp).
   asan=${WAVEJETS_ASAN_BUILD_DIR:-build/asan}
   cmake -S . -B "$asan" -DCMAKE_BUILD_TYPE=Debug -DBUILD_TESTING=ON -DWAVEJETS_TESTS_ONLY=ON \
     -DCMAKE_CXX_FLAGS="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined -O1"

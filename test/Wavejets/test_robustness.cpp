@@ -505,7 +505,15 @@ void class_cases()
     check(!o.is_valid() || o.radius() > 0, "1e308 neighbor: failure state or finite fit (" +
           std::string(CGAL::Wavejets::fit_status_name(o.status())) + ")");
   }
-  end_case("NON_FINITE_INPUT; the form keeps the query point");
+    // Scales where world-unit outputs leave double's range: OUT_OF_RANGE, never inf.
+    for(double scale : {1e-30, 1e-140, 1e30, 1e80})
+    {
+      std::vector<Point> tiny;
+      for(const Point& p : patch.points) tiny.push_back(CGAL::ORIGIN + (p - CGAL::ORIGIN) * scale);
+      Form t = fit(tiny, 9, "scaled by " + str(scale));
+      check(t.status() == Status::OUT_OF_RANGE, "patch scaled by " + str(scale) + ": OUT_OF_RANGE");
+    }
+  end_case("NON_FINITE_INPUT / OUT_OF_RANGE; the form keeps the query point");
 
   begin_case("class: translation by 1e6 / 1e7");
   {
@@ -828,6 +836,14 @@ void function_cases()
         ++j;
       }
     check(same, "finite points' results equal those of the set without the non-finite points");
+  }
+  {
+    Sample all_bad;
+    for(int i = 0; i < 30; ++i) all_bad.add(Point(nan_value, i, inf), Vector(0, 0, 1));
+    Four_runs r = run_four(to_point_set(all_bad), 10, 2., 2., WP::order(2), "only non-finite points");
+    check(all_unfitted(r), "only non-finite points: nothing fitted, all counted (empty kd-tree)");
+    Four_runs rr = run_four(to_point_set(all_bad), 0, 2., 2., WP::order(2).neighbor_radius(1.), "only non-finite, radius");
+    check(all_unfitted(rr), "only non-finite points with neighbor_radius: nothing fitted");
   }
   end_case("non-finite points unfitted, unchanged, counted; others unaffected");
 
