@@ -110,6 +110,11 @@ public:
   virtual double level(const V3& p) const = 0;
   /// Distance from a surface point to the surface's border (infinity for closed surfaces).
   virtual double boundary_distance(const V3&) const { return std::numeric_limits<double>::infinity(); }
+  /// The surface point an off-surface point (e.g. a noisy or denoised sample) is compared with:
+  /// the exact closest point for the sphere, cylinder and torus; the generators' Newton projection
+  /// along the gradient for the other implicit surfaces (ellipsoid, Goursat: the closest point up
+  /// to O(curvature * distance^2)); the radial projection for the paper's shape (its parametrization).
+  virtual V3 surface_point(const V3& p) const = 0;
 
 protected:
   Sample make_sample(const V3& p) const
@@ -129,6 +134,8 @@ public:
   virtual V3 gradient(const V3& p) const = 0;
   virtual M3 hessian(const V3& p) const = 0;
   Truth truth(const V3& p) const override { return implicit_truth(gradient(p), hessian(p)); }
+
+  V3 surface_point(const V3& p) const override { return project(p); }
 
   /// Newton projection along the gradient onto F = 0.
   V3 project(V3 x) const
@@ -175,6 +182,7 @@ public:
   double level(const V3& p) const override { return p.squaredNorm() - 1.; }
   V3 gradient(const V3& p) const override { return 2. * p; }
   M3 hessian(const V3&) const override { return 2. * M3::Identity(); }
+  V3 surface_point(const V3& p) const override { return p.normalized(); }
   std::vector<Sample> sample(std::size_t N, std::uint64_t seed) const override
   {
     std::mt19937_64 rng(seed);
@@ -237,6 +245,12 @@ public:
     H(2, 2) = 2.;
     return H;
   }
+  V3 surface_point(const V3& p) const override
+  {
+    const double rho = std::hypot(p.x(), p.y());
+    const V3 c(R * p.x() / rho, R * p.y() / rho, 0.); // nearest point of the core circle
+    return c + r * (p - c).normalized();
+  }
   /// Exact area-weighted sampling: angle u uniform, tube angle v accepted with probability
   /// (R + r cos v) / (R + r) (the area element is r (R + r cos v) du dv).
   std::vector<Sample> sample(std::size_t N, std::uint64_t seed) const override
@@ -267,6 +281,11 @@ public:
   V3 gradient(const V3& p) const override { return V3(2. * p.x(), 2. * p.y(), 0.); }
   M3 hessian(const V3&) const override { return V3(2., 2., 0.).asDiagonal(); }
   double boundary_distance(const V3& p) const override { return half_height - std::abs(p.z()); }
+  V3 surface_point(const V3& p) const override
+  {
+    const double rho = std::hypot(p.x(), p.y());
+    return V3(r * p.x() / rho, r * p.y() / rho, std::max(-half_height, std::min(half_height, p.z())));
+  }
   std::vector<Sample> sample(std::size_t N, std::uint64_t seed) const override
   {
     std::mt19937_64 rng(seed);
@@ -373,6 +392,7 @@ public:
     return t;
   }
   double level(const V3& p) const override { return p.norm() - radius(polar_angle(p)); }
+  V3 surface_point(const V3& p) const override { return radius(polar_angle(p)) * p.normalized(); }
   /// Exact area-weighted rejection: propose (phi, theta) uniform on the unit sphere (density
   /// sin phi), accept with probability (r |X'(phi)| sin phi / sin phi) / bound; r |X'| =
   /// r sqrt(r'^2 + r^2) <= bound.
