@@ -94,11 +94,16 @@ inline bool same_bits(const Vector& a, const Vector& b)
   return std::memcmp(x, y, sizeof x) == 0;
 }
 
-/// Counters of a fuzz run.
+/// Counters of a fuzz run. A "real fit" is a call of the fitting core (internal::Fitter::fit) with
+/// order >= 1 on accepted parameters and finite input, i.e. one that gets past the input checks to
+/// the adaptive order, the PCA and the least squares (see fuzz_fit and fuzz_function).
 struct Stats
 {
   std::size_t fits = 0, valid_fits = 0, failed_fits = 0, precondition_exceptions = 0, function_calls = 0,
               invalid_argument = 0, fitted_points = 0;
+  std::size_t real_fits = 0;          // Wavejet_fitting calls that are real fits
+  std::size_t function_real_fits = 0; // points of accepted function calls that are real fits
+  std::size_t non_finite_fits = 0;    // Wavejet_fitting calls rejected with NON_FINITE_INPUT
   std::string first_failure;
   std::size_t failures = 0;
   void fail(const std::string& what)
@@ -200,7 +205,10 @@ inline void check_form(const Form& f, const Point& query, Stats& st)
   }
 }
 
-/// One Wavejet_fitting call on a random neighborhood with random order and options.
+/// One Wavejet_fitting call on a random neighborhood with random order and options. Counts it in
+/// `st.real_fits` when it is a real fit: order >= 1 (order 0 throws before any work), at least one
+/// point, and a status other than NON_FINITE_INPUT (the only status of the early returns for a
+/// non-finite query point, offset q - p or normal, in Wavejet_fitting and in the fitting core).
 template <class Src>
 void fuzz_fit(Src& s, Fitting& fitting, Stats& st, std::vector<Point>& pts, std::vector<Vector>& normals)
 {
@@ -247,6 +255,8 @@ void fuzz_fit(Src& s, Fitting& fitting, Stats& st, std::vector<Point>& pts, std:
   {
     Form f = with_normal ? fitting(pts.begin(), pts.end(), order, normals[0]) : fitting(pts.begin(), pts.end(), order);
     if(order == 0) st.fail("order 0 accepted by Wavejet_fitting (precondition not checked)");
+    if(f.status() == CGAL::Wavejets::Fit_status::NON_FINITE_INPUT) ++st.non_finite_fits;
+    else if(L > 0 && order >= 1) ++st.real_fits;
     check_form(f, L ? pts[0] : Point(CGAL::ORIGIN), st);
     if(L && f.is_valid() != (f.status() == CGAL::Wavejets::Fit_status::SUCCESS)) st.fail("is_valid inconsistent");
     if(f.is_valid() && !(fin(fitting.condition_number()) || !o.compute_condition_number))
@@ -280,7 +290,12 @@ struct Slot_map
 };
 
 /// One call of a random point-set function on a random small point set with random parameters.
-/// Returns the number of points (each is one fit).
+/// Returns the number of real fits it made: 0 when the parameters are rejected, otherwise the
+/// number of points with finite coordinates (the driver calls the fitting core once for each of
+/// them, with order >= 1; non-finite neighbors are never returned by the neighbor query, and a
+/// non-finite input normal only leaves the fit unoriented). This is a lower bound: the functions
+/// that re-estimate normals (write_normals) fit the moved points a second time, not counted.
+/// Also added to `st.function_real_fits`.
 template <class Src>
 std::size_t fuzz_function(Src& s, Stats& st, std::vector<Point>& pts, std::vector<Vector>& normals)
 {
@@ -362,15 +377,15 @@ std::size_t fuzz_function(Src& s, Stats& st, std::vector<Point>& pts, std::vecto
     for(std::size_t i = 0; i < N && i < v.size(); ++i)
       if(!same_bits(v[i].first, in[i].first) || !same_bits(v[i].second, in[i].second))
       { st.fail("input modified by a throwing call"); break; }
-    return N;
+    return 0;
   }
   catch(const std::exception& e)
   {
     st.fail("function " + std::to_string(fn) + " threw an undocumented exception: " + e.what());
-    return N;
+    return 0;
   }
   // Invariants: count, order, untouched unfitted points, finite outputs, consistent report.
-  if(v.size() != N) { st.fail("point count changed"); return N; }
+  if(v.size() != N) { st.fail("point count changed"); return 0; }
   std::size_t nfit = 0, nonfinite = 0;
   for(std::size_t i = 0; i < N; ++i)
   {
@@ -392,7 +407,8 @@ std::size_t fuzz_function(Src& s, Stats& st, std::vector<Point>& pts, std::vecto
   if(rep.number_of_points != N || rep.number_of_fitted_points != nfit || rep.number_of_fitted_points + rep.number_of_unfitted_points != N ||
      rep.number_of_non_finite_points != nonfinite || rep.interrupted)
     st.fail("inconsistent Processing_report");
-  return N;
+  st.function_real_fits += N - nonfinite;
+  return N - nonfinite;
 }
 
 } // namespace wavejets_fuzz
