@@ -461,6 +461,16 @@ Input read_input(const std::string& path)
                        " has a NaN or infinite coordinate (remove such points first)");
     ++index;
   }
+  // A single point, or points that all coincide, have no surface: no neighborhood radius, no
+  // fit, no shading. Say so here, for every command, rather than fail later without the file name.
+  const Point& first = in.points.point(*in.points.begin());
+  bool all_same = true;
+  for(Point_set::Index i : in.points)
+    if(in.points.point(i) != first) { all_same = false; break; }
+  if(all_same)
+    throw File_error(path + (in.points.size() == 1 ? std::string(": contains a single point")
+                                                   : ": all " + std::to_string(in.points.size()) + " points coincide") +
+                     " (no surface to fit)");
   // Normals count as present when at least one is finite and non-zero.
   if(in.points.has_normal_map()) {
     bool any = false;
@@ -491,7 +501,7 @@ struct Neighborhood
   std::string description;
 };
 
-Neighborhood choose_neighborhood(const Options& o, const Point_set& points)
+Neighborhood choose_neighborhood(const Options& o, const Point_set& points, const std::string& path)
 {
   Neighborhood n;
   if(o.radius > 0) {
@@ -504,7 +514,8 @@ Neighborhood choose_neighborhood(const Options& o, const Point_set& points)
     n.description = std::to_string(n.k) + " nearest neighbors";
   } else {
     const double spacing = average_spacing(points);
-    if(!(spacing > 0)) throw File_error("all points coincide: no neighborhood radius can be chosen");
+    if(!(spacing > 0)) throw File_error(path + ": every point coincides with its nearest neighbors: no neighborhood radius can be "
+                                       "chosen from the average spacing (give --k or --radius)");
     n.radius = o.radius_factor * spacing;
     n.description = "radius " + format(n.radius) + " (" + format(o.radius_factor) + " x average spacing " + format(spacing) + ")";
   }
@@ -622,14 +633,14 @@ void write_output(const Point_set& points, const std::string& path, bool ascii, 
   out.commit();
 }
 
-int run_fit_command(const Options& o, Progress& progress)
+int run_fit_command_on_input(const Options& o, Progress& progress)
 {
   const Clock::time_point t0 = Clock::now();
   const std::string& in_path = o.files[0];
   const std::string& out_path = o.files[1];
   Input in = read_input(in_path);
   Point_set& points = in.points;
-  const Neighborhood n = choose_neighborhood(o, points);
+  const Neighborhood n = choose_neighborhood(o, points, in_path);
   const unsigned bit = o.command->bit;
   const std::size_t order = o.order ? o.order : (bit == NORMALS || bit == CURVATURE ? 2 : 4);
   Run_log log;
@@ -742,6 +753,15 @@ int run_fit_command(const Options& o, Progress& progress)
   return EXIT_SUCCESS;
 }
 
+// The package's parameter checks throw std::invalid_argument ("wavejet_xxx: message"): report
+// them as a bad command line, naming the input file they were applied to.
+int run_fit_command(const Options& o, Progress& progress)
+{
+  try {
+    return run_fit_command_on_input(o, progress);
+  } catch(const std::invalid_argument& e) { throw Usage_error(o.files[0] + ": " + e.what()); }
+}
+
 // ------------------------------------------------------------------------------------------------
 // Rendering.
 wavejets_demo::Cloud to_cloud(const std::string& path, const Options& o, Progress& progress)
@@ -752,8 +772,12 @@ wavejets_demo::Cloud to_cloud(const std::string& path, const Options& o, Progres
   c.spacing = average_spacing(points);
   if(!points.has_normal_map()) {   // shading needs normals; their orientation does not matter
     points.add_normal_map(Vector(0, 0, 0));
-    CGAL::wavejet_estimate_normals<Concurrency_tag>(points, std::min<unsigned>(18, unsigned(points.size() - 1)),
-      WP::order(std::size_t(2)).callback(progress.stage("normals for shading")).point_map(points.point_map()).normal_map(points.normal_map()));
+    try {
+      CGAL::wavejet_estimate_normals<Concurrency_tag>(points, std::min<unsigned>(18, unsigned(points.size() - 1)),
+        WP::order(std::size_t(2)).callback(progress.stage("normals for shading")).point_map(points.point_map()).normal_map(points.normal_map()));
+    } catch(const std::invalid_argument& e) {   // e.g. "needs k >= 2": too few points to shade
+      throw File_error(path + ": cannot estimate normals for shading (" + e.what() + ")");
+    }
     progress.done();
   }
   if(!o.color_by.empty()) {
@@ -818,8 +842,10 @@ int run_render(const Options& o, Progress& progress)
 
 int main(int argc, char** argv)
 {
+  std::string input;   // the first input file, named by the errors that do not name one themselves
   try {
     const Options o = parse_command_line(argc, argv);
+    if(!o.files.empty()) input = o.files[0] + ": ";
 #ifdef CGAL_LINKED_WITH_TBB
     std::unique_ptr<tbb::global_control> threads;
     if(o.threads > 0)
@@ -833,11 +859,11 @@ int main(int argc, char** argv)
   } catch(const File_error& e) {
     std::cerr << "wavejets: error: " << e.what() << std::endl;
     return 1;
-  } catch(const std::invalid_argument& e) {   // the package's parameter checks
-    std::cerr << "wavejets: error: " << e.what() << std::endl;
+  } catch(const std::invalid_argument& e) {   // the package's parameter checks (normally caught above)
+    std::cerr << "wavejets: error: " << input << e.what() << std::endl;
     return 2;
   } catch(const std::exception& e) {
-    std::cerr << "wavejets: error: " << e.what() << std::endl;
+    std::cerr << "wavejets: error: " << input << e.what() << std::endl;
     return 1;
   }
 }
