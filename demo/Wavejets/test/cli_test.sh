@@ -70,7 +70,21 @@ case $case_name in
   enhance_positions)
     expect_ok "$kitten" p.ply 0.00100001 "fitted" -- enhance-positions "$kitten" p.ply --gain 3 --max-displacement 0.001 | tee summary.txt
     grep -q "clamped" summary.txt || fail "the summary does not count clamped points"
-    expect_ok "$kitten" p_none.ply 1 "fitted" -- enhance-positions "$kitten" p_none.ply --k 40 --max-displacement none --evaluation-radius 0.02
+    # Without the clamp (default evaluation radius s = Rf, gain 2), a point moves by
+    #   |f00 - 2 pi (gain - 1) a0(s) / Rf^2|,  2 pi a0(s) = the signed volume between the Wavejet and
+    # its tangent plane over the disc of radius s <= Rf. Where the Wavejet stays within the ball of
+    # radius Rf holding its neighbors (the height-field assumption), |f00| <= Rf and
+    # |2 pi a0(s)| <= pi s^2 Rf, so the motion is at most (1 + pi (gain - 1)) Rf = 4.15 Rf. Where the
+    # assumption breaks (which is why the clamp exists) the fit can overshoot without bound; measured on the kitten: 12 of the 5210 points (0.23%) beyond 4.15 Rf, the worst 9.6 Rf.
+    # The check allows 1%: a lost point order, a wrong scaling (a0/Rf^3 instead of a0/Rf^2 is 15 times
+    # larger here) or a general blow-up fails it. It also needs some point beyond Rf/2, which the
+    # default clamp would have cut (measured: 770 points): the clamp is really off.
+    # (The distance checked by `points` is unbounded here: `motion` checks it per point.)
+    expect_ok "$kitten" p_none.ply inf "fitted" -- enhance-positions "$kitten" p_none.ply --k 40 --max-displacement none
+    "$check" motion "$kitten" p_none.ply 40 0.5 4.15 0.01 || fail "unclamped motion out of bounds"
+    # With the default clamp, no point moves by more than Rf/2 (plus rounding), and many reach it.
+    expect_ok "$kitten" p_clamp.ply inf "fitted" -- enhance-positions "$kitten" p_clamp.ply --k 40
+    "$check" motion "$kitten" p_clamp.ply 40 0.499999 0.500001 0 || fail "the default clamp Rf/2 is not applied"
     ;;
   enhance_normals)
     expect_ok "$kitten" en.ply 0 "fitted" -- enhance-normals "$kitten" en.ply --gain 3
@@ -109,13 +123,60 @@ case $case_name in
       expect_error "$f" out.png -- render "$f" out.png
     done
     grep -q "NaN" <("$wj" normals nan_binary.ply out.ply 2>&1) || fail "the NaN error does not say NaN"
-    grep -q "truncated" <("$wj" normals truncated_end.ply out.ply 2>&1) || true
+    # CGAL 5.5's PLY reader gives no reason for these: the tool says "malformed or truncated", or
+    # "truncated PLY (...)" when the reader stops early without an error.
+    for f in truncated.ply truncated_end.ply truncated_ascii.ply; do
+      grep -q "$f: .*truncated" <("$wj" normals "$f" out.ply 2>&1) || fail "the error for $f does not say truncated"
+    done
     # An existing output is left untouched by a failing run.
     echo keep > keep.ply
     "$wj" normals garbage.xyz keep.ply 2> /dev/null && fail "garbage accepted"
     [ "$(cat keep.ply)" = keep ] || fail "a failing run replaced an existing output"
     # Unwritable output folder.
     expect_error "no_such_dir" no_such_dir/out.ply -- normals "$kitten" no_such_dir/out.ply
+    ;;
+  coincident)
+    # Points that all coincide have no surface: every command fails, naming the file, writing nothing.
+    printf '0.1 0.2 0.3\n0.1 0.2 0.3\n0.1 0.2 0.3\n0.1 0.2 0.3\n0.1 0.2 0.3\n' > same.xyz
+    printf '0.1 0.2 0.3 0 0 1\n' > single.pwn
+    for f in same.xyz single.pwn; do
+      for c in normals curvature enhance-positions enhance-normals; do
+        expect_error "$f" out.ply -- "$c" "$f" out.ply
+        expect_error "$f" out.ply -- "$c" "$f" out.ply --k 3
+        expect_error "$f" out.ply -- "$c" "$f" out.ply --radius 0.1
+      done
+      expect_error "$f" out.png -- render "$f" out.png
+    done
+    grep -q "all 5 points coincide" <("$wj" normals same.xyz out.ply 2>&1) || fail "the error does not say that the points coincide"
+    grep -q "single point" <("$wj" normals single.pwn out.ply 2>&1) || fail "the error does not say single point"
+    # Two groups of 7 coincident points: not all equal, but every point's 6 nearest neighbors
+    # coincide with it, so the default radius (4 x average spacing) cannot be chosen.
+    for i in 1 2 3 4 5 6 7; do echo "0 0 0"; echo "1 1 1"; done > clusters.xyz
+    expect_error clusters.xyz out.ply -- normals clusters.xyz out.ply
+    grep -q "coincides with its nearest neighbors" <("$wj" normals clusters.xyz out.ply 2>&1) || fail "clusters: wrong message"
+    # Two points: too few to estimate normals for shading.
+    printf '0 0 0\n1 0 0\n' > two.xyz
+    expect_error two.xyz out.png -- render two.xyz out.png
+    ;;
+  library_errors)
+    # Checks of the library (std::invalid_argument) that the command line does not make itself:
+    # a bad command line (exit status 2), one line naming the input file, no output.
+    for args in "enhance-positions --gain 1e101" "enhance-normals --gain 0,1e101" "enhance-normals --gain 1e101,0"; do
+      # shellcheck disable=SC2086
+      set -- $args
+      expect_error "$kitten" out.ply -- "$1" "$kitten" out.ply "${@:2}"
+      "$wj" "$1" "$kitten" out.ply "${@:2}" 2> stderr.txt; status=$?
+      [ $status -eq 2 ] || fail "exit status $status (expected 2) for: $args"
+      grep -q "the gain must be finite" stderr.txt || fail "the library's message is missing for: $args"
+    done
+    ;;
+  pwn)
+    # A .pwn file ("x y z nx ny nz" per line) is read with its normals, like the same .xyz.
+    cp "$kitten" kitten.pwn
+    expect_ok kitten.pwn n_pwn.ply 0 "fitted" -- normals kitten.pwn n_pwn.ply | tee summary.txt
+    grep -q "(XYZ, with normals)" summary.txt || fail "the .pwn normals were not read"
+    expect_ok "$kitten" n_xyz.ply 0 "fitted" -- normals "$kitten" n_xyz.ply --quiet
+    "$check" same n_pwn.ply n_xyz.ply || fail ".pwn and .xyz give different results"
     ;;
   bad_flags)
     for args in "normals" "nosuchcommand a b" "normals $kitten out.ply --k" "normals $kitten out.ply --k abc" \

@@ -4,11 +4,18 @@
 //     kept), OUT has normals and every PROPERTY (a double or uchar PLY property).
 //   wavejets_check same OUT_A OUT_B     the two PLY files hold identical points and normals
 //   wavejets_check agree A B FRACTION   at least FRACTION of the normals of A and B point to the same side
+//   wavejets_check motion IN OUT K LOW HIGH FRACTION
+//     with Rf_i the distance from point i of IN to its K-th nearest other point of IN (the
+//     neighborhood radius of a fit on K nearest neighbors) and m_i the distance from point i of IN
+//     to point i of OUT: at least one m_i > LOW x Rf_i, and at most FRACTION of the points have
+//     m_i > HIGH x Rf_i (FRACTION 0: all within).
 //   wavejets_check png FILE WIDTH HEIGHT
 //     FILE is a WIDTH x HEIGHT PNG with at least 1% of its pixels not background.
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Point_set_3.h>
 #include <CGAL/Point_set_3/IO.h>
+#include <CGAL/Search_traits_3.h>
+#include <CGAL/Orthogonal_k_neighbor_search.h>
 
 #include "render.h"
 
@@ -16,6 +23,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <string>
+#include <vector>
 
 typedef CGAL::Exact_predicates_inexact_constructions_kernel Kernel;
 typedef CGAL::Point_set_3<Kernel::Point_3, Kernel::Vector_3> Point_set;
@@ -85,6 +93,40 @@ int main(int argc, char** argv)
     std::cout << "OK: " << fraction << " of the normals agree" << std::endl;
     return EXIT_SUCCESS;
   }
+  if(mode == "motion" && argc == 8) {
+    Point_set in, out;
+    if(!read(argv[2], in) || !read(argv[3], out) || in.size() != out.size())
+      return fail("cannot read the files or sizes differ");
+    const unsigned int k = unsigned(std::atoi(argv[4]));
+    const double low = std::atof(argv[5]), high = std::atof(argv[6]), fraction = std::atof(argv[7]);
+    typedef CGAL::Search_traits_3<Kernel> Traits;
+    typedef CGAL::Orthogonal_k_neighbor_search<Traits> Search;
+    std::vector<Kernel::Point_3> points;
+    for(Point_set::Index i : in) points.push_back(in.point(i));
+    const Search::Tree tree(points.begin(), points.end());
+    double worst = 0., largest = 0., largest_rf = 0.;
+    std::size_t beyond_low = 0, beyond_high = 0;
+    for(std::size_t i = 0; i < points.size(); ++i) {
+      double rf = 0.;   // K + 1 nearest: the point itself, then its K nearest others
+      for(const auto& neighbor : Search(tree, points[i], k + 1)) rf = (std::max)(rf, std::sqrt(neighbor.second));
+      const double moved = std::sqrt(CGAL::squared_distance(points[i], out.point(*(out.begin() + i))));
+      if(!(rf > 0)) return fail("point " + std::to_string(i) + " has no neighborhood radius");
+      largest_rf = (std::max)(largest_rf, rf);
+      worst = (std::max)(worst, moved / rf);
+      largest = (std::max)(largest, moved);
+      if(moved > low * rf) ++beyond_low;
+      if(!(moved <= high * rf)) ++beyond_high;
+    }
+    std::cout << "max Rf " << largest_rf << ", max motion " << largest << ", max motion / Rf " << worst << ", " << beyond_low
+              << " points moved by more than " << low << " Rf, " << beyond_high << " by more than " << high << " Rf"
+              << std::endl;
+    if(!(double(beyond_high) <= fraction * double(points.size())))
+      return fail(std::to_string(beyond_high) + " points moved by more than " + std::to_string(high) + " Rf (allowed: " +
+                  std::to_string(fraction * double(points.size())) + ")");
+    if(beyond_low == 0) return fail("no point moved by more than " + std::to_string(low) + " Rf");
+    std::cout << "OK" << std::endl;
+    return EXIT_SUCCESS;
+  }
   if(mode == "png" && argc == 5) {
     wavejets_demo::Image image;
     try {
@@ -101,6 +143,6 @@ int main(int argc, char** argv)
     std::cout << "OK: " << image.width << "x" << image.height << ", " << drawn << " pixels drawn" << std::endl;
     return EXIT_SUCCESS;
   }
-  std::cerr << "usage: wavejets_check points IN OUT TOLERANCE [PROPERTY...] | same A B | agree A B F | png FILE W H" << std::endl;
+  std::cerr << "usage: wavejets_check points IN OUT TOLERANCE [PROPERTY...] | same A B | agree A B F | motion IN OUT K LOW HIGH FRACTION | png FILE W H" << std::endl;
   return 2;
 }
