@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian packages the package builds on, if any is missing (run as root).
+# doxygen builds the documentation and runs its test (wavejets_documentation: no warning allowed).
 set -euo pipefail
-packages="g++ cmake make libcgal-dev libeigen3-dev libtbb-dev libboost-dev libpng-dev"
+packages="g++ cmake make libcgal-dev libeigen3-dev libtbb-dev libboost-dev libpng-dev doxygen"
 missing=""
 for p in $packages; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
