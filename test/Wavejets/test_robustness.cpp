@@ -32,6 +32,7 @@
 #include <iostream>
 #include <limits>
 #include <list>
+#include <map>
 #include <random>
 #include <sstream>
 #include <stdexcept>
@@ -384,6 +385,39 @@ std::vector<double> kth_distances(const std::vector<Point>& pts, unsigned int k)
   return out;
 }
 
+
+/// data/fandisk.off: its vertices with area-weighted vertex normals, and its faces.
+bool read_fandisk(Sample& s, std::vector<std::vector<std::size_t> >& faces)
+{
+  std::vector<Point> verts;
+  faces.clear();
+  if(!CGAL::IO::read_OFF("data/fandisk.off", verts, faces)) return false;
+  std::vector<Vector> normals(verts.size(), CGAL::NULL_VECTOR);
+  for(const std::vector<std::size_t>& f : faces)
+    for(std::size_t j = 1; j + 1 < f.size(); ++j)
+    {
+      const Vector fn = CGAL::cross_product(verts[f[j]] - verts[f[0]], verts[f[j + 1]] - verts[f[0]]);
+      for(std::size_t v : {f[0], f[j], f[j + 1]}) normals[v] = normals[v] + fn;
+    }
+  s = Sample();
+  for(std::size_t i = 0; i < verts.size(); ++i)
+    s.add(verts[i], length(normals[i]) > 0 ? normals[i] / length(normals[i]) : normals[i]);
+  return true;
+}
+
+/// Indices of the k nearest other points of point i (brute force, nearest first, ties by index).
+std::vector<std::size_t> nearest(const std::vector<Point>& pts, std::size_t i, std::size_t k)
+{
+  std::vector<std::pair<double, std::size_t> > d;
+  for(std::size_t j = 0; j < pts.size(); ++j)
+    if(j != i) d.push_back(std::make_pair(CGAL::squared_distance(pts[i], pts[j]), j));
+  k = (std::min)(k, d.size());
+  std::partial_sort(d.begin(), d.begin() + k, d.end());
+  std::vector<std::size_t> out;
+  for(std::size_t j = 0; j < k; ++j) out.push_back(d[j].second);
+  return out;
+}
+
 // ================================================================================================
 // Class cases.
 
@@ -570,6 +604,69 @@ void class_cases()
     end_case("dyadic: max relative change " + str(worst) + "; generic (rounded) 1e7: " + str(generic));
   }
 
+  begin_case("class: neighborhood_radius far smaller than every neighbor distance");
+  {
+    // Fitting_options::neighborhood_radius is only the Rf of the rescaling (Fitting_options.h:
+    // "Neighborhood radius Rf used to rescale the coordinates"; fitting_core.h divides the offsets
+    // by it): Wavejet_fitting selects no neighbors and fits every point of the range. A radius
+    // that holds no neighbor therefore gives the fit of the default Rf (farthest neighbor) in other
+    // units: valid, same order, same curvatures, normal and origin up to rounding, radius() equal to
+    // the option, number_of_points() the range size; and OUT_OF_RANGE for Rf < 1e-20 (documented
+    // range [1e-20, 1e20] of Rf). A non-polynomial surface, so that the least squares have residuals.
+    std::mt19937 r3(3);
+    std::uniform_real_distribution<double> U(-0.3, 0.3);
+    std::vector<Point> pts(1, Point(0, 0, 0));
+    for(int i = 0; i < 80; ++i)
+    {
+      const double x = U(r3), y = U(r3);
+      pts.push_back(Point(x, y, 0.8 * x * x - 0.3 * y * y + 0.05 * std::sin(7 * x) * std::cos(5 * y)));
+    }
+    double dmin = inf;
+    for(std::size_t i = 1; i < pts.size(); ++i) dmin = (std::min)(dmin, length(pts[i] - pts[0]));
+    const Vector up(0, 0, 1);
+    double worst = 0.;
+    for(std::size_t order : {2, 4})
+    {
+      const Form ref = fit(pts, order, "default radius", CGAL::Wavejets::Fitting_options(), &up);
+      if(!check(ref.is_valid(), "default radius: valid")) continue;
+      const double Rf = ref.radius();
+      for(double factor : {1e-3, 1e-8, 1e-14})
+      {
+        CGAL::Wavejets::Fitting_options o;
+        o.neighborhood_radius = factor * dmin;
+        const std::string w = "order " + std::to_string(order) + ", radius " + str(factor) + " x nearest distance";
+        const Form f = fit(pts, order, w, o, &up);
+        if(!check(f.is_valid(), w + ": valid (every point of the range is fitted)")) continue;
+        check(f.radius() == o.neighborhood_radius, w + ": radius() is the option");
+        check(f.number_of_points() == pts.size(), w + ": number_of_points() is the range size");
+        if(!check(f.order() == ref.order(), w + ": same order as with the default radius")) continue;
+        double e = std::abs(f.mean_curvature() - ref.mean_curvature()) * Rf;
+        e = (std::max)(e, std::abs(f.gaussian_curvature() - ref.gaussian_curvature()) * Rf * Rf);
+        e = (std::max)(e, std::abs(f.principal_curvatures(0) - ref.principal_curvatures(0)) * Rf);
+        e = (std::max)(e, std::abs(f.principal_curvatures(1) - ref.principal_curvatures(1)) * Rf);
+        e = (std::max)(e, length(f.normal_direction() - ref.normal_direction()));
+        e = (std::max)(e, length(f.origin() - ref.origin()) / Rf);
+        for(std::size_t kk = 0; kk <= f.order(); ++kk) // world units; relative to Rf^{1-k}
+          for(std::size_t c = kk * (kk + 1) / 2; c <= kk * (kk + 1) / 2 + kk; ++c)
+            e = (std::max)(e, std::abs(f.coefficients()[c] - ref.coefficients()[c]) * std::pow(Rf, double(kk) - 1.));
+        worst = (std::max)(worst, e);
+        // Measured: 4.7e-16. Rescaling by Rf scales the columns of the least-squares system (and the
+        // PCA covariance); Householder QR is columnwise backward stable and the rank test is relative
+        // to each column's norm, so only rounding differs. 1e-12: a few thousand ulps of margin.
+        check(e <= 1e-12, w + ": same fit as with the default radius (relative change " + str(e) + ")");
+      }
+      for(double r : {1e-21 * dmin, 1e-300})
+      {
+        CGAL::Wavejets::Fitting_options o;
+        o.neighborhood_radius = r;
+        const Form f = fit(pts, order, "radius " + str(r), o, &up);
+        check(f.status() == Status::OUT_OF_RANGE, "order " + std::to_string(order) + ", radius " + str(r) + " < 1e-20: OUT_OF_RANGE");
+      }
+    }
+    end_case("nearest neighbor at " + str(dmin) + "; same fit as the default Rf, max relative change " + str(worst) +
+             "; OUT_OF_RANGE below 1e-20");
+  }
+
   begin_case("class: order 0 and absurd orders");
   {
     bool threw = false;
@@ -627,6 +724,95 @@ void class_cases()
     check(std::abs(length(f.origin() - pts[0])) <= 0.05, "the projection stays between the sheets");
   }
   end_case("finite fit");
+
+  begin_case("class: fandisk, neighborhoods across the sharp edges");
+  {
+    Sample s;
+    std::vector<std::vector<std::size_t> > faces;
+    if(check(read_fandisk(s, faces) && s.size() > 1000, "read data/fandisk.off (" + std::to_string(s.size()) + " vertices)"))
+    {
+      // Sharp vertices: endpoints of a mesh edge whose two faces make more than 30 degrees. Their
+      // 20 nearest vertices lie on both sides of the edge: not a height field over one plane.
+      std::vector<Vector> face_normal;
+      std::map<std::pair<std::size_t, std::size_t>, std::vector<std::size_t> > edge_faces;
+      for(std::size_t fi = 0; fi < faces.size(); ++fi)
+      {
+        const std::vector<std::size_t>& f = faces[fi];
+        const Vector n = CGAL::cross_product(s.points[f[1]] - s.points[f[0]], s.points[f[2]] - s.points[f[0]]);
+        face_normal.push_back(n / length(n));
+        for(std::size_t j = 0; j < f.size(); ++j)
+          edge_faces[std::make_pair((std::min)(f[j], f[(j + 1) % f.size()]), (std::max)(f[j], f[(j + 1) % f.size()]))].push_back(fi);
+      }
+      std::vector<char> sharp(s.size(), 0);
+      for(const auto& e : edge_faces)
+        if(e.second.size() == 2 && face_normal[e.second[0]] * face_normal[e.second[1]] < std::cos(CGAL_PI / 6))
+          sharp[e.first.first] = sharp[e.first.second] = 1;
+      std::size_t sharp_count = 0, fits = 0, valid = 0, spread = 0, uncorrected = 0;
+      double max_height[2] = {0., 0.}, max_k[2] = {0., 0.}; // order 2, order 4
+      bool oriented = true, height_ok = true, k_ok = true;
+      for(std::size_t i = 0; i < s.size(); ++i)
+      {
+        if(!sharp[i]) continue;
+        ++sharp_count;
+        std::vector<Point> nb(1, s.points[i]);
+        double min_dot = 1.;
+        for(std::size_t j : nearest(s.points, i, 20))
+        {
+          nb.push_back(s.points[j]);
+          min_dot = (std::min)(min_dot, s.normals[j] * s.normals[i]);
+        }
+        spread += min_dot < std::cos(CGAL_PI / 6); // a neighbor's vertex normal more than 30 degrees away
+        for(int variant = 0; variant < 4; ++variant)
+          for(std::size_t order : {2, 4})
+          {
+            // 0: no normal; 1: vertex normal orients; 2: + robust IRLS; 3: vertex normal seeds the frame.
+            CGAL::Wavejets::Fitting_options o;
+            if(variant == 2) o.robust_iterations = 3;
+            if(variant == 3) o.normal_use = CGAL::Wavejets::Normal_use::SEED_FRAME;
+            const Vector& n = s.normals[i];
+            const Form f = fit(nb, order, "fandisk vertex " + std::to_string(i) + ", variant " + std::to_string(variant) +
+                               ", order " + std::to_string(order), o, variant ? &n : nullptr); // finite or failure state
+            ++fits;
+            if(!f.is_valid()) continue;
+            ++valid;
+            const double Rf = f.radius(), h = length(f.origin() - nb[0]) / Rf;
+            const double k = (std::max)(std::abs(f.principal_curvatures(0)), std::abs(f.principal_curvatures(1))) * Rf;
+            max_height[order == 4] = (std::max)(max_height[order == 4], h);
+            max_k[order == 4] = (std::max)(max_k[order == 4], k);
+            // The Wavejet point above the query stays in the ball of radius Rf around it, which holds
+            // every fitted point (measured: at most 0.32 Rf at order 2, 0.49 Rf at order 4).
+            height_ok = height_ok && h <= 1.;
+            // Regression bound, 2x the measured maxima of |k1|, |k2| in units of 1/Rf (3.7 at order 2,
+            // 12.3 at order 4, across edges of up to ~90 degrees): the smooth fit of a crease bends by
+            // about the crease angle over a fraction of Rf; a runaway or ill-conditioned fit gives
+            // curvatures orders of magnitude larger.
+            k_ok = k_ok && k <= (order == 2 ? 8. : 25.);
+            // Documented: the frame normal is within 90 degrees of the given normal. Checked on the fits
+            // whose frame was not corrected (the frame of the first fit): the tangent-plane corrections
+            // can tilt the kept frame further (3 of 5696 fits here end beyond 90 degrees: reported).
+            if(variant && f.number_of_corrections() == 0)
+            {
+              ++uncorrected;
+              oriented = oriented && f.frame_normal_direction() * n >= 0.;
+            }
+          }
+      }
+      check(sharp_count > 200, "fandisk has sharp edges (" + std::to_string(sharp_count) + " sharp vertices)");
+      check(spread > sharp_count / 2, "most sharp neighborhoods hold vertex normals 30+ degrees apart (" +
+            std::to_string(spread) + ")");
+      check(valid == fits, "every fit valid: 21 points carry order 4 (" + std::to_string(valid) + "/" + std::to_string(fits) + ")");
+      check(height_ok, "|f00| <= Rf: the Wavejet point above the query stays in the neighborhood's ball (max " +
+            str(max_height[0]) + ", " + str(max_height[1]) + ")");
+      check(k_ok, "|k1|, |k2| <= 8/Rf (order 2), 25/Rf (order 4) (max " + str(max_k[0]) + ", " + str(max_k[1]) + ")");
+      check(uncorrected > 1000 && oriented, "uncorrected frames: frame normal within 90 degrees of the given normal (" +
+            std::to_string(uncorrected) + " fits)");
+      end_case(std::to_string(sharp_count) + " neighborhoods across an edge, " + std::to_string(valid) + "/" +
+               std::to_string(fits) + " fits valid; max |f00|/Rf " + str(max_height[0]) + " (order 2), " + str(max_height[1]) +
+               " (order 4); max |k| Rf " + str(max_k[0]) + ", " + str(max_k[1]));
+    }
+    else
+      end_case();
+  }
 }
 
 // ------------------------------------------------------------------------------------------------
@@ -1078,21 +1264,10 @@ void function_cases()
 
   begin_case("functions: fandisk (sharp edges)");
   {
-    std::vector<Point> verts;
+    Sample s;
     std::vector<std::vector<std::size_t> > faces;
-    const bool read = CGAL::IO::read_OFF("data/fandisk.off", verts, faces);
-    if(check(read && verts.size() > 1000, "read data/fandisk.off (" + std::to_string(verts.size()) + " vertices)"))
+    if(check(read_fandisk(s, faces) && s.size() > 1000, "read data/fandisk.off (" + std::to_string(s.size()) + " vertices)"))
     {
-      std::vector<Vector> normals(verts.size(), CGAL::NULL_VECTOR);
-      for(const std::vector<std::size_t>& f : faces)
-        for(std::size_t j = 1; j + 1 < f.size(); ++j)
-        {
-          const Vector fn = CGAL::cross_product(verts[f[j]] - verts[f[0]], verts[f[j + 1]] - verts[f[0]]);
-          for(std::size_t v : {f[0], f[j], f[j + 1]}) normals[v] = normals[v] + fn;
-        }
-      Sample s;
-      for(std::size_t i = 0; i < verts.size(); ++i)
-        s.add(verts[i], length(normals[i]) > 0 ? normals[i] / length(normals[i]) : normals[i]);
       const std::vector<double> Rf = kth_distances(s.points, 20);
       Point_set ps = to_point_set(s);
       double worst[3] = {0, 0, 0};
