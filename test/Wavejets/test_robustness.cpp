@@ -41,6 +41,14 @@
 #include <utility>
 #include <vector>
 
+#ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/global_control.h>
+#include <tbb/task_arena.h>
+#include <tbb/task_scheduler_observer.h>
+#include <mutex>
+#include <set>
+#endif
+
 typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
 typedef K::Point_3 Point;
 typedef K::Vector_3 Vector;
@@ -1299,6 +1307,34 @@ void function_cases()
 // ================================================================================================
 // Determinism and thread safety.
 
+#ifdef CGAL_LINKED_WITH_TBB
+typedef CGAL::Parallel_tag Parallel;
+
+/// Counts the distinct threads that enter a task arena (the calling thread and the TBB workers).
+class Thread_counter : public tbb::task_scheduler_observer
+{
+public:
+  explicit Thread_counter(tbb::task_arena& arena) : tbb::task_scheduler_observer(arena) { observe(true); }
+  ~Thread_counter() { observe(false); }
+  void on_scheduler_entry(bool) override
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ids_.insert(std::this_thread::get_id());
+  }
+  std::size_t count()
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return ids_.size();
+  }
+
+private:
+  std::mutex mutex_;
+  std::set<std::thread::id> ids_;
+};
+#else
+typedef CGAL::Parallel_if_available_tag Parallel; // sequential without TBB (see determinism_cases)
+#endif
+
 /// Writable map keyed by the elements of a vector: writes value i to out[i] (checks the key is the element).
 struct Hmap
 {
@@ -1349,17 +1385,50 @@ void determinism_cases()
   {
     const std::vector<double> s1 = all_outputs<CGAL::Sequential_tag>(sets[0], 25);
     const std::vector<double> s2 = all_outputs<CGAL::Sequential_tag>(sets[0], 25);
-    const std::vector<double> p1 = all_outputs<CGAL::Parallel_if_available_tag>(sets[0], 25);
-    const std::vector<double> p2 = all_outputs<CGAL::Parallel_if_available_tag>(sets[0], 25);
+    const std::vector<double> p1 = all_outputs<Parallel>(sets[0], 25);
+    const std::vector<double> p2 = all_outputs<Parallel>(sets[0], 25);
     check(same_bits(s1, s2), "repeated Sequential runs bitwise identical");
     check(same_bits(s1, p1), "Sequential and Parallel bitwise identical");
     check(same_bits(p1, p2), "repeated Parallel runs bitwise identical");
+    std::string info;
+#ifdef CGAL_LINKED_WITH_TBB
+    // Parallel_tag in arenas of 2, 4 and 8 threads, more than the cores of a small CI machine
+    // (global_control lets TBB start that many workers), counting the threads that took part: the
+    // comparison must involve several threads whatever the machine.
+    tbb::global_control allow(tbb::global_control::max_allowed_parallelism, 8);
+    std::size_t most = 0;
+    for(int t : {2, 4, 8})
+    {
+      tbb::task_arena arena(t);
+      Thread_counter counter(arena);
+      std::vector<double> p;
+      arena.execute([&] { p = all_outputs<CGAL::Parallel_tag>(sets[0], 25); });
+      const std::size_t used = counter.count();
+      check(same_bits(s1, p), "Parallel_tag in an arena of " + std::to_string(t) + " threads (" + std::to_string(used) +
+            " took part): bitwise identical to Sequential");
+      most = (std::max)(most, used);
+      info += (info.empty() ? "" : ", ") + std::to_string(used) + " of " + std::to_string(t);
+    }
+    check(most >= 2, "the Parallel_tag runs used several threads (at most " + std::to_string(most) + ")");
+    info = "TBB linked; threads that took part per arena: " + info;
+#elif defined(WAVEJETS_REQUIRE_TBB)
+    check(false, "WAVEJETS_REQUIRE_TBB is set but this test was built without TBB (CGAL_LINKED_WITH_TBB undefined): "
+                 "Parallel_if_available_tag runs sequentially and Sequential == Parallel checks nothing");
+#else
+    std::cout << "    NOTICE: built without TBB: Parallel_if_available_tag is sequential, so Sequential == Parallel "
+                 "checks nothing (configure with -DWAVEJETS_REQUIRE_TBB=ON to make this an error)" << std::endl;
+    info = "WITHOUT TBB: vacuous";
+#endif
+    end_case(info);
   }
-  end_case();
 
   begin_case("thread safety: concurrent calls on different point sets");
   {
-    std::vector<std::vector<double> > serial, concurrent(sets.size());
+    // For each set, two std::threads at the same time: one runs the four functions with
+    // Sequential_tag and then Wavejet_fitting on its neighborhoods, the other the four functions
+    // with Parallel_tag (TBB loops started from several threads at once). All must equal the
+    // results of the same calls made one after the other, bitwise.
+    std::vector<std::vector<double> > serial, concurrent(sets.size()), concurrent_parallel(sets.size());
     std::vector<std::vector<double> > serial_fits, concurrent_fits(sets.size());
     auto fits = [](const std::vector<PN>& v) {
       Fitting fitting; // one instance per thread
@@ -1377,17 +1446,27 @@ void determinism_cases()
     for(const std::vector<PN>& v : sets) { serial.push_back(all_outputs<CGAL::Sequential_tag>(v, 25)); serial_fits.push_back(fits(v)); }
     std::vector<std::thread> threads;
     for(std::size_t s = 0; s < sets.size(); ++s)
+    {
       threads.emplace_back([&, s] {
         concurrent[s] = all_outputs<CGAL::Sequential_tag>(sets[s], 25);
         concurrent_fits[s] = fits(sets[s]);
       });
+      threads.emplace_back([&, s] { concurrent_parallel[s] = all_outputs<Parallel>(sets[s], 25); });
+    }
     for(std::thread& t : threads) t.join();
     for(std::size_t s = 0; s < sets.size(); ++s)
     {
-      check(same_bits(serial[s], concurrent[s]), "set " + std::to_string(s) + ": concurrent functions == serial");
+      check(same_bits(serial[s], concurrent[s]), "set " + std::to_string(s) + ": concurrent Sequential functions == serial");
+      check(same_bits(serial[s], concurrent_parallel[s]), "set " + std::to_string(s) + ": concurrent Parallel functions == serial");
       check(same_bits(serial_fits[s], concurrent_fits[s]), "set " + std::to_string(s) + ": concurrent Wavejet_fitting == serial");
     }
-    end_case(std::to_string(sets.size()) + " std::threads");
+    end_case(std::to_string(threads.size()) + " std::threads, " + std::to_string(sets.size()) + " of them with " +
+#ifdef CGAL_LINKED_WITH_TBB
+             "Parallel_tag"
+#else
+             "Parallel_if_available_tag (sequential: no TBB)"
+#endif
+    );
   }
 }
 
