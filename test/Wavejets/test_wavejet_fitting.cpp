@@ -757,18 +757,34 @@ void test_cgal_cross_check(Tester& T, const Kitten& kitten)
     }
   }
   {
-    // Accuracy against analytic truth with the correction on (default options). The default reads
-    // the curvature from the first (PCA-frame) fit, the same least-squares problem as CGAL's, so
-    // it must be as accurate as CGAL by design. TANGENT_FRAME reads it from the corrected fit: a
-    // different (equally valid) least-squares problem; its error is measured and printed only.
+    // Accuracy against analytic truth with the correction on.
+    // (a) Default options: the correction runs, but the curvature is read from the first fit, in
+    //     the PCA frame (Curvature_frame::INITIAL_FRAME): that is CGAL's own least-squares problem,
+    //     so "not worse than CGAL" holds by construction. It is kept as a consistency check (equal
+    //     to CGAL up to rounding), not as an accuracy claim about the correction.
+    // (b) The corrected path, Curvature_frame::TANGENT_FRAME: curvature read from the fit in the
+    //     corrected tangent frame, a different least-squares problem. WAVEJETS_MATH.md section 4
+    //     reports it 5-20% worse (RMSE of H) than the PCA-frame fit on a quartic implicit surface.
+    //     Asserted: RMS curvature error <= 1.2 x CGAL's (the spec's worst figure; measured here:
+    //     printed "ratio", at most ~1.04), and the corrected path really differs from (a) on most
+    //     samples (otherwise (b) would be tautological too).
+    // (c) The corrected normal (normal_direction(), the tangent-plane normal of the kept re-fit; the
+    //     same for both curvature frames) against the analytic normal, compared with CGAL's Monge
+    //     normal (the normal of the PCA-frame jet). Measured RMS ratio wavejet/CGAL: 0.22 and 0.37
+    //     on the sphere at d = 2, 4, 0.94 on the torus at d = 2, and 1.00-1.014 elsewhere (d = 3, and
+    //     the torus at d = 4): the re-fit is kept when it lowers the fitted tilt |f_{1,1}|, not the
+    //     true normal error, so it is not better everywhere. Asserted: RMS angle <= 1.05 x CGAL's.
     std::mt19937_64 rng(99);
     std::uniform_real_distribution<double> U(0, 2 * PI);
     Torus tor;
     tor.Rot = random_rotation(rng);
+    const double curvature_factor = 1.2, normal_factor = 1.05;
+    double worst_curv_ratio = 0, worst_normal_ratio = 0;
     for(int s = 0; s < 2; ++s)
       for(std::size_t d = 2; d <= 4; ++d)
       {
-        double rms_cgal = 0, rms_wj = 0, rms_tan = 0;
+        double rms_cgal = 0, rms_wj = 0, rms_tan = 0, rms_ncgal = 0, rms_nwj = 0;
+        int differs = 0;
         const int M = 40;
         for(int i = 0; i < M; ++i)
         {
@@ -801,22 +817,44 @@ void test_cgal_cross_check(Tester& T, const Kitten& kitten)
           m.comply_wrt_given_normal(V(truth.normal));
           const double ec = curv_abs_err(curv(m), curv(truth)), ew = curv_abs_err(curv(f), curv(truth)),
                        et = curv_abs_err(curv(ft), curv(truth));
+          const double nc = line_angle(E(m.normal_direction()), truth.normal),
+                       nw = line_angle(E(ft.normal_direction()), truth.normal);
           rms_cgal += ec * ec;
           rms_wj += ew * ew;
           rms_tan += et * et;
+          rms_ncgal += nc * nc;
+          rms_nwj += nw * nw;
           T.check(f.is_valid() && ft.is_valid(), "fit failed");
-          // not worse than CGAL (same problem: equal up to rounding, see the cross-check above)
-          T.check(ew <= ec + 1e-8 * std::abs(truth.k2), str(s ? "torus" : "sphere", " d=", d, ": wavejet error ", ew,
-                                                              " > CGAL error ", ec));
+          T.check(ft.number_of_corrections() >= 1, "TANGENT_FRAME: no re-fit was accepted");
+          // (a) consistency: equal to CGAL's error up to rounding (same problem, see the cross-check above)
+          T.check(ew <= ec + 1e-8 * std::abs(truth.k2),
+                  str(s ? "torus" : "sphere", " d=", d, ": default (INITIAL_FRAME, CGAL's problem) error ", ew,
+                      " != CGAL error ", ec));
           // by design, TANGENT_FRAME changes only where the curvature is read from
           T.check(ft.order() == f.order() && ft.coefficients() == f.coefficients() &&
                     E(ft.normal_direction()) == E(f.normal_direction()),
                   "TANGENT_FRAME changed the fit itself");
+          if(curv_abs_err(curv(ft), curv(f)) > 1e-10 * std::abs(truth.k2)) ++differs;
         }
-        std::cout << "  " << (s ? "torus" : "sphere") << " d=" << d << ": RMS curvature error vs truth: CGAL "
-                  << std::sqrt(rms_cgal / M) << ", wavejet default (INITIAL_FRAME) " << std::sqrt(rms_wj / M)
-                  << ", wavejet TANGENT_FRAME " << std::sqrt(rms_tan / M) << std::endl;
+        const double cgal = std::sqrt(rms_cgal / M), wj = std::sqrt(rms_wj / M), tan = std::sqrt(rms_tan / M);
+        const double ncgal = std::sqrt(rms_ncgal / M), nwj = std::sqrt(rms_nwj / M);
+        worst_curv_ratio = (std::max)(worst_curv_ratio, tan / cgal);
+        worst_normal_ratio = (std::max)(worst_normal_ratio, nwj / ncgal);
+        const std::string tag = str(s ? "torus" : "sphere", " d=", d);
+        std::cout << "  " << tag << ": RMS curvature error vs truth: CGAL " << cgal << ", wavejet default (INITIAL_FRAME) "
+                  << wj << ", wavejet TANGENT_FRAME " << tan << " (ratio " << tan / cgal << ", " << differs << "/" << M
+                  << " samples differ from the default); RMS normal angle: CGAL " << ncgal << ", wavejet corrected "
+                  << nwj << " (ratio " << nwj / ncgal << ")" << std::endl;
+        // (b)
+        T.check(tan <= curvature_factor * cgal,
+                tag + str(": TANGENT_FRAME RMS curvature error ", tan, " > ", curvature_factor, " x CGAL's ", cgal));
+        T.check(differs >= M / 2, tag + str(": TANGENT_FRAME curvature differs from the default on only ", differs, "/", M));
+        // (c)
+        T.check(nwj <= normal_factor * ncgal,
+                tag + str(": corrected normal RMS error ", nwj, " > ", normal_factor, " x CGAL's ", ncgal));
       }
+    std::cout << "  worst ratio to CGAL: TANGENT_FRAME curvature " << worst_curv_ratio << " (bound " << curvature_factor
+              << "), corrected normal " << worst_normal_ratio << " (bound " << normal_factor << ")" << std::endl;
   }
   T.end();
 }
