@@ -17,6 +17,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
 #include <cstdlib>
@@ -621,30 +622,12 @@ void test_analytic_surfaces(Tester& T)
             "x^4+y^4: f_{4,0}, |f_{4,4}|");
   }
   {
-    // Convergence: the same sample pattern scaled to radii h and h/2 on a torus (not a polynomial),
-    // orders 2..5. The curvature error is O(h^{K-1}): error(h)/error(h/2) should be about 2^{K-1};
-    // assert > 2^{K-1} / 2.
+    // (The convergence rate with the neighborhood size is group 2b, test_convergence.)
     Torus tor;
     tor.Rot = random_rotation(rng);
     tor.T = Vector3d(0.3, -0.2, 0.1);
     const double phi = 0.3, psi = 0.7;
     const Truth truth = tor.truth(phi, psi);
-    for(int k = 2; k <= 5; ++k)
-    {
-      const std::vector<Eigen::Vector2d> pat = disk_pattern(rng, int(3 * nb_coeffs(k)) + 10);
-      const double h = k <= 3 ? 0.4 : 0.6;
-      double err[2];
-      for(int i = 0; i < 2; ++i)
-      {
-        const std::vector<Point> pts = tor.patch(phi, psi, h / (1 << i), pat);
-        const Form f = fitting(pts.begin(), pts.end(), std::size_t(k), V(truth.normal));
-        err[i] = curv_abs_err(curv(f), curv(truth));
-      }
-      const double ratio = err[0] / err[1];
-      std::cout << "  torus order " << k << ": curvature error " << err[0] << " at h=" << h << ", " << err[1]
-                << " at h/2, ratio " << ratio << " (expected ~" << (1 << (k - 1)) << ")" << std::endl;
-      T.check(ratio > 0.5 * (1 << (k - 1)), str("torus: convergence order ", k, " ratio ", ratio));
-    }
     // Orientation: comply_wrt_given_normal(-N) on the form oriented by N is the form oriented by
     // -N (same PCA axis u, v and n flipped): H -> -H, (k1, k2) -> (-k2, -k1), f_{k,n} -> -conj f_{k,n}.
     const std::vector<Point> pts = tor.patch(phi, psi, 0.5, disk_pattern(rng, 50));
@@ -675,6 +658,142 @@ void test_analytic_surfaces(Tester& T)
         T.check(f.coefficient(k, n) == -std::conj(f_before.coefficient(k, n)), "comply_wrt_given_normal: -conj");
       }
   }
+  T.end();
+}
+
+// ---------------------------------------------------------------------------------------------
+// 2b. Convergence rate of the curvature error with the neighborhood size
+
+// A graph z = f(x, y) over a local frame with its derivatives up to order 2, analytic.
+struct Graph_surface
+{
+  const char* name;
+  std::function<double(double, double)> z;
+  // (f_x, f_y, f_xx, f_xy, f_yy) at (x, y)
+  std::function<std::array<double, 5>(double, double)> d;
+  double x0, y0; // the query point's (x, y): off the vertex, so the graph has terms of every degree
+};
+
+void test_convergence(Tester& T)
+{
+  T.begin("2b. convergence rate of the curvature error, h, h/2, h/4, orders 2..5");
+  // For a fit of order K on samples of a smooth surface over a disc of radius h, the first term
+  // the fit cannot represent has degree K+1: it perturbs the fitted second derivatives, hence the
+  // curvatures, by O(h^{K-1}) (WAVEJETS_MATH.md section 2; the same argument as for jets).
+  // Measurement: per surface and order, 6 random unit-disc patterns, each scaled to h0, h0/2,
+  // h0/4 (h0 = 0.2 x the smallest radius of curvature at the query); E(h) = RMS over the patterns
+  // of max(|dH|, |dk1|, |dk2|) against the analytic truth; observed order between two sizes
+  // p = log2(E(h) / E(h/2)). (A single pattern is not enough: each signed error is a sum
+  // a h^{K-1} + b h^K + ... whose terms can cancel at one size, which makes p locally anything;
+  // measured with h0 = 0.1 x rho, torus K = 4: p = 4.2 then 1.97 on one pattern.)
+  // Theory: p >= K - 1 as h -> 0. p is larger where the degree-(K+1) term does not reach the second derivatives (the even
+  // graphs sphere and cylinder, and even K where the next even degree dominates); that is allowed.
+  // At finite h the next term of the expansion lowers p by O(h), which halves with h: asserted
+  // p >= K - 1 - 0.5 on the first halving and p >= K - 1 - 0.25 on the second (measured: all p
+  // within [K - 1 - 0.07, K + 0.1], smallest margin to the bound 0.18, saddle K = 4 default:
+  // p = 2.89, 2.93; the margin is printed). A fit that silently lost one order (adaptive order,
+  // a wrong column) would drop p by >= 1 and fail.
+  // Floors: coordinates of size ~3 carry eps ~ 4e-16 of rounding, i.e. ~1e-12 on curvatures at
+  // h = 0.02; at the umbilic sphere k1, k2 = H +- sqrt(H^2 - K_G) carry ~sqrt(eps) |H| ~ 1.5e-8
+  // (smallest E: 5e-7 on the sphere, 2.6e-8 overall, on the non-umbilic saddle).
+  std::mt19937_64 rng(2718);
+  const double slack[2] = {0.5, 0.25};
+  const int npat = 6;
+  auto sphere_z = [](double x, double y) { return std::sqrt(1. - x * x - y * y) - 1.; };
+  auto sphere_d = [](double x, double y) {
+    const double w = std::sqrt(1. - x * x - y * y), w3 = w * w * w;
+    return std::array<double, 5>{-x / w, -y / w, -(1. - y * y) / w3, -x * y / w3, -(1. - x * x) / w3};
+  };
+  auto cyl_z = [](double x, double) { return std::sqrt(1. - x * x) - 1.; };
+  auto cyl_d = [](double x, double) {
+    const double w = std::sqrt(1. - x * x);
+    return std::array<double, 5>{-x / w, 0., -1. / (w * w * w), 0., 0.};
+  };
+  const std::vector<Graph_surface> graphs = {
+    {"sphere R=1", sphere_z, sphere_d, 0.25, -0.15},
+    {"cylinder R=1", cyl_z, cyl_d, 0.3, 0.1},
+    {"paraboloid 0.7x^2+0.2y^2", [](double x, double y) { return 0.7 * x * x + 0.2 * y * y; },
+     [](double x, double y) { return std::array<double, 5>{1.4 * x, 0.4 * y, 1.4, 0., 0.4}; }, 0.3, -0.2},
+    {"saddle 0.5(x^2-y^2)", [](double x, double y) { return 0.5 * (x * x - y * y); },
+     [](double x, double y) { return std::array<double, 5>{x, -y, 1., 0., -1.}; }, 0.3, 0.2},
+    {"monkey saddle x^3-3xy^2", [](double x, double y) { return x * x * x - 3 * x * y * y; },
+     [](double x, double y) { return std::array<double, 5>{3 * x * x - 3 * y * y, -6 * x * y, 6 * x, -6 * y, -6 * x}; },
+     0.3, 0.2},
+    {"x^4+y^4", [](double x, double y) { return x * x * x * x + y * y * y * y; },
+     [](double x, double y) { return std::array<double, 5>{4 * x * x * x, 4 * y * y * y, 12 * x * x, 0., 12 * y * y}; },
+     0.4, 0.3}};
+  Torus tor;
+  tor.Rot = random_rotation(rng);
+  tor.T = Vector3d(0.3, -0.2, 0.1);
+  const double tphi = 0.3, tpsi = 0.7;
+
+  Fitting_options topt;
+  topt.curvature_frame = Curvature_frame::TANGENT_FRAME;
+  double worst_margin[2] = {1e300, 1e300};
+  for(std::size_t s = 0; s <= graphs.size(); ++s)
+  {
+    const bool is_torus = s == graphs.size();
+    const std::string name = is_torus ? std::string("torus R0=3 r0=1") : std::string(graphs[s].name);
+    const Local_frame F = random_frame(rng, Vector3d(0.7, -1.3, 2.1));
+    Truth truth;
+    if(is_torus)
+      truth = tor.truth(tphi, tpsi);
+    else
+    {
+      const std::array<double, 5> d = graphs[s].d(graphs[s].x0, graphs[s].y0);
+      truth = graph_truth(d[0], d[1], d[2], d[3], d[4], F.u, F.v, F.n);
+    }
+    // length scale of the surface at the query: the smallest radius of curvature
+    const double rho = 1. / (std::max)(std::abs(truth.k1), std::abs(truth.k2));
+    for(int K = 2; K <= 5; ++K)
+    {
+      const double h0 = 0.2 * rho;
+      double err[2][3] = {{0, 0, 0}, {0, 0, 0}};
+      for(int pi = 0; pi < npat; ++pi)
+      {
+        const std::vector<Eigen::Vector2d> pat = disk_pattern(rng, int(3 * nb_coeffs(K)) + 10);
+        for(int i = 0; i < 3; ++i)
+        {
+          const double h = h0 / (1 << i);
+          std::vector<Point> pts;
+          if(is_torus)
+            pts = tor.patch(tphi, tpsi, h, pat);
+          else
+          {
+            const Graph_surface& g = graphs[s];
+            pts.push_back(P(F.world(g.x0, g.y0, g.z(g.x0, g.y0))));
+            for(const Eigen::Vector2d& q : pat)
+            {
+              const double x = g.x0 + h * q.x(), y = g.y0 + h * q.y();
+              pts.push_back(P(F.world(x, y, g.z(x, y))));
+            }
+          }
+          for(int m = 0; m < 2; ++m)
+          {
+            Fitting fitting(m == 0 ? Fitting_options() : topt);
+            const Form f = fitting(pts.begin(), pts.end(), std::size_t(K), V(truth.normal));
+            T.check(f.is_valid() && f.order() == std::size_t(K), name + str(" K=", K, ": fit failed or order lowered"));
+            const double e = curv_abs_err(curv(f), curv(truth));
+            err[m][i] += e * e / npat;
+          }
+        }
+      }
+      for(int m = 0; m < 2; ++m)
+      {
+        for(int i = 0; i < 3; ++i) err[m][i] = std::sqrt(err[m][i]);
+        const double p1 = std::log2(err[m][0] / err[m][1]), p2 = std::log2(err[m][1] / err[m][2]);
+        worst_margin[m] = (std::min)({worst_margin[m], p1 - (K - 1) + slack[0], p2 - (K - 1) + slack[1]});
+        std::cout << "  " << name << (m == 0 ? " default" : " TANGENT_FRAME") << " K=" << K << ": RMS error " << err[m][0]
+                  << ", " << err[m][1] << ", " << err[m][2] << " at h=" << h0 << ", h/2, h/4; observed order " << p1
+                  << ", " << p2 << " (theory >= " << K - 1 << ")" << std::endl;
+        T.check(p1 >= K - 1 - slack[0] && p2 >= K - 1 - slack[1],
+                str(name, m == 0 ? " default" : " TANGENT_FRAME", " K=", K, ": observed order ", p1, ", ", p2,
+                    " < K - 1 - ", slack[0], ", K - 1 - ", slack[1]));
+      }
+    }
+  }
+  std::cout << "  smallest margin p - (K - 1 - slack): default " << worst_margin[0] << ", TANGENT_FRAME "
+            << worst_margin[1] << " (must be >= 0)" << std::endl;
   T.end();
 }
 
@@ -1175,6 +1294,7 @@ int main()
   if(!kitten.load("data/kitten.xyz")) std::cout << "cannot read data/kitten.xyz" << std::endl;
   test_exact_recovery(T);
   test_analytic_surfaces(T);
+  test_convergence(T);
   test_cgal_cross_check(T, kitten);
   test_invariances(T, kitten);
   test_stability(T);
