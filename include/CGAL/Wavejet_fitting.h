@@ -88,6 +88,19 @@ public:
   A valid form has only finite quantities: a fit whose world-unit coefficients or curvatures would
   overflow (radius Rf outside [1e-20, 1e20], or a quantity among the coefficients, the curvatures and
   the a_n(Rf) that overflows at a high order) fails with `Fit_status::OUT_OF_RANGE`.
+
+  Number type of the coefficients: the fit is computed in `double` whatever the kernel, and
+  `coefficient()` and `enclosed_area_coefficient()` return `Complex`, which is
+  `std::complex<double>`. For the kernels whose `FT` is `double` (`Exact_predicates_inexact_constructions_kernel`,
+  `Simple_cartesian<double>`) this is `std::complex<FT>`. For a kernel with another `FT`
+  (e.g. `Exact_predicates_exact_constructions_kernel`, `Simple_cartesian<float>`) it stays
+  `std::complex<double>`: the values are `double` anyway, and `std::complex<T>` is specified only
+  for floating-point `T`.
+
+  Evaluation radius: `enclosed_area_coefficient(n, s)` evaluates a_n(s) at the `s` it is given,
+  also beyond Rf (where the polynomial is extrapolated, outside the points it was fitted to); it is
+  not clamped. The point-set functions (`wavejet_enhance_positions()`, `wavejet_enhance_normals()`)
+  clamp their `evaluation_radius` to Rf per point. To reproduce them, pass `(std::min)(s, radius())`.
   */
   class Wavejet_form
   {
@@ -101,7 +114,9 @@ public:
     typedef typename Data_kernel::Point_3 Point_3;
     /// Vector type of `Data_kernel`.
     typedef typename Data_kernel::Vector_3 Vector_3;
-    /// Type of the complex coefficients f_{k,n} and a_n(s).
+    /// Type of the complex coefficients f_{k,n} and a_n(s): `std::complex<double>`, i.e.
+    /// `std::complex<FT>` for the kernels with `FT == double` (Epick, `Simple_cartesian<double>`);
+    /// see the class description for other kernels.
     typedef std::complex<double> Complex;
     /// @}
 
@@ -182,7 +197,8 @@ public:
     /// Writable access to `coefficients()`.
     std::vector<double>& coefficients() { return m_coefficients; }
     /// Enclosed-area coefficient a_n(s) = sum_{k >= |n|, k = n mod 2} f_{k,n} s^{k+2}/(k+2) (length^3),
-    /// all terms included (the filters drop the k = 0 and k = 1 terms themselves).
+    /// all terms included (the filters drop the k = 0 and k = 1 terms themselves). `s` is in world
+    /// units and is not clamped to `radius()` (the point-set functions clamp it; see the class description).
     Complex enclosed_area_coefficient(int n, double s) const
     {
       if(!is_valid() || std::size_t(std::abs(n)) > m_order)
@@ -233,7 +249,11 @@ public:
       std::swap(m_d1, m_d2);
     }
 
-    /// Writes every quantity, one per line.
+    /// Writes, as text: the status (`fit_status_name()`); a line with the order, the number of points,
+    /// Rf, the number of corrections and the residual |f_{1,1}|; one line each for the origin, the
+    /// normal and the frame axes u, v, n; a line with H and K_G; one line each with k1 and d1, k2 and
+    /// d2; then one line per order k <= `order()` with every f(k,n), n = -k, -k+2, ..., k. Numbers use
+    /// the stream's precision.
     std::ostream& dump_verbose(std::ostream& os) const
     {
       os << "Wavejet form: " << Wavejets::fit_status_name(m_status) << "\n";
@@ -311,12 +331,19 @@ public:
     return fit(begin, end, order, &hint);
   }
 
-  /// Condition number (ratio of extreme singular values) of the kept fit's rescaled least-squares
-  /// system; 0 before a successful fit or when `options().compute_condition_number` is false.
+  /// Condition number (ratio of the largest to the smallest singular value) of the kept fit's
+  /// least-squares matrix: one row per point, coordinates (q - p)/Rf in the form's final frame,
+  /// columns r^k, r^k cos(n theta), r^k sin(n theta) (rows scaled by the square roots of the weights
+  /// of the last IRLS pass, if any). Meaningful after a successful fit; 0 before any fit, or when
+  /// `options().compute_condition_number` is false. It is not comparable with
+  /// `Monge_via_jet_fitting::condition_number()`, which is that of CGAL's own preconditioned monomial system.
   FT condition_number() const { return FT(m_result.condition_number); }
 
-  /// PCA of the last neighborhood: eigenvalue (world units squared) and unit eigenvector;
-  /// `i == 0` largest, `i == 2` smallest (the PCA normal).
+  /// PCA of the last neighborhood (the query point included): eigenvalue of the covariance matrix
+  /// of the points about their barycenter, divided by the number of points (world units squared,
+  /// the convention of `Monge_via_jet_fitting::pca_basis()`), and unit eigenvector; `i == 0` largest,
+  /// `i == 2` smallest (the PCA normal); the three eigenvectors form a direct orthonormal basis.
+  /// Fitted without a normal and with no accepted re-fit, the form's frame (u, v, n) is this basis.
   std::pair<FT, Vector_3> pca_basis(std::size_t i) const
   {
     CGAL_precondition(i < 3);

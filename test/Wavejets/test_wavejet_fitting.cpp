@@ -28,6 +28,8 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 typedef CGAL::Exact_predicates_inexact_constructions_kernel EK;
@@ -45,6 +47,17 @@ using CGAL::Wavejets::Fit_status;
 using CGAL::Wavejets::Fitting_options;
 using CGAL::Wavejets::Curvature_frame;
 using CGAL::Wavejets::Normal_use;
+
+// coefficient(k, n) and enclosed_area_coefficient(n, s) return std::complex<FT> for the kernels
+// whose FT is double (Epick, Simple_cartesian<double>), as issue 2 asks; see Wavejet_form::Complex.
+static_assert(std::is_same<Form::FT, double>::value && std::is_same<Form::Complex, std::complex<Form::FT>>::value &&
+                std::is_same<decltype(std::declval<const Form&>().coefficient(0, 0)), std::complex<Form::FT>>::value &&
+                std::is_same<decltype(std::declval<const Form&>().enclosed_area_coefficient(0, 1.)),
+                             std::complex<Form::FT>>::value,
+              "Epick: Wavejet_form::coefficient() must return std::complex<FT>");
+static_assert(std::is_same<CGAL::Wavejet_fitting<SC>::Wavejet_form::Complex,
+                           std::complex<CGAL::Wavejet_fitting<SC>::Wavejet_form::FT>>::value,
+              "Simple_cartesian<double>: Wavejet_form::Complex must be std::complex<FT>");
 
 namespace {
 
