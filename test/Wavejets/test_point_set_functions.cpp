@@ -262,22 +262,43 @@ static void test_sphere_growth()
                  ", mean d = " + fmt(mean_d) + ", rel err = " + fmt(rel) + ", spread/d = " + fmt(spread) +
                  ", lateral = " + fmt(max_lateral));
 
-  // Same cap, normals with the other chain of the issue (order 6, radius 0.03): the Wavejet normal
-  // of a sphere is radial; with the polynomial truncation at r^8 (K = 6) the tilt error is
-  // ~ r^7 / R^6 ~ 0.03^7 ~ 2e-11 rad: bound 1e-9.
+  // Same cap, normals. (i) The chain of issue 3 verbatim,
+  //   CGAL::Wavejets::parameters::order(6).neighbor_radius(0.03).point_map(pm).normal_map(nm),
+  // with wavejet_estimate_normals: unoriented normals (the input normals are set to 0 first, so
+  // every checked normal must have been written). (ii) The same chain with
+  // orient_with_input_normals(true) inserted, input normals +z: the same normals, oriented to +z.
+  // The Wavejet normal of a sphere is radial; with the polynomial truncation at r^8 (K = 6) the
+  // tilt error is ~ r^7 / R^6 ~ 0.03^7 ~ 2e-11 rad: bound 1e-9. (ii) must be (i) up to the sign
+  // and rounding (1e-14): orientation only flips the frame (same order, radius, neighborhoods).
+  PV_range nv = input;
+  for(PV& q : nv) q.second = Vector(0, 0, 0);
+  const CGAL::Wavejets::Processing_report rv = CGAL::wavejet_estimate_normals<CGAL::Parallel_if_available_tag>(
+    nv, 0, CGAL::Wavejets::parameters::order(6).neighbor_radius(0.03).point_map(pm).normal_map(nm));
   PV_range ns = input;
   for(PV& q : ns) q.second = Vector(0, 0, 1); // only oriented on the cap's side
   CGAL::wavejet_estimate_normals<CGAL::Parallel_if_available_tag>(
     ns, 0, WJP::order(6).orient_with_input_normals(true).neighbor_radius(0.03).point_map(pm).normal_map(nm));
-  double max_err = 0.;
+  double max_err = 0., max_err_v = 0.;
+  bool same_up_to_sign = true, oriented = true;
   for(std::size_t i = 0; i < M; ++i)
   {
     const Vector p0 = input[i].first - CGAL::ORIGIN;
     if(std::acos((std::min)(1., p0.z())) >= cap - 0.035) continue;
     max_err = (std::max)(max_err, angle(ns[i].second, p0));
+    max_err_v = (std::max)(max_err_v, unoriented_angle(nv[i].second, p0)); // 0 normal: atan2(0, 0) = 0,
+    if(nv[i].second.squared_length() < 0.5) max_err_v = 1e300;            // so check it was written
+    same_up_to_sign = same_up_to_sign && (std::min)((nv[i].second - ns[i].second).squared_length(),
+                                                    (nv[i].second + ns[i].second).squared_length()) <= 1e-28;
+    oriented = oriented && ns[i].second.z() > 0;
   }
-  report_group("1b. sphere normals (K=6, chain order(6).neighbor_radius(0.03).point_map.normal_map)",
-               max_err < 1e-9, "max angle to radial = " + fmt(max_err) + " rad");
+  report_group("1b. sphere normals, issue 3 chain verbatim: order(6).neighbor_radius(0.03).point_map(pm).normal_map(nm)",
+               max_err_v < 1e-9 && rv.number_of_fitted_points > 0 && rv.number_of_points == M,
+               "max unoriented angle to radial = " + fmt(max_err_v) + " rad, " + std::to_string(rv.number_of_fitted_points) +
+                 " of " + std::to_string(M) + " points fitted");
+  report_group("1c. sphere normals, order(6).orient_with_input_normals(true).neighbor_radius(0.03).point_map.normal_map",
+               max_err < 1e-9 && same_up_to_sign && oriented,
+               "max angle to radial = " + fmt(max_err) + " rad; equal to 1b up to the sign (1e-14): " +
+                 (same_up_to_sign ? "yes" : "no") + ", all oriented to +z: " + (oriented ? "yes" : "no"));
 }
 
 // ---------------------------------------------------------------------------------------------
