@@ -509,21 +509,20 @@ static void compare_with_jets(const std::string& name, const PV_range& input, do
                "mean unoriented deviation = " + fmt(dev) + " deg (bound " + fmt(bound_deg) + ")");
 }
 
-static void accuracy_vs_jets(const std::string& name, const PV_range& truth)
+static void accuracy_vs_jets(const std::string& name, const PV_range& truth, unsigned int k, unsigned int degree,
+                             double factor)
 {
   Point_map pm;
   Normal_map nm;
   PV_range w = truth, j = truth;
-  CGAL::wavejet_estimate_normals<CGAL::Parallel_if_available_tag>(w, 18, WJP::order(2).point_map(pm).normal_map(nm));
+  CGAL::wavejet_estimate_normals<CGAL::Parallel_if_available_tag>(w, k, WJP::order(degree).point_map(pm).normal_map(nm));
   CGAL::jet_estimate_normals<CGAL::Parallel_if_available_tag>(
-    j, 18, CGAL::parameters::point_map(pm).normal_map(nm).degree_fitting(2));
+    j, k, CGAL::parameters::point_map(pm).normal_map(nm).degree_fitting(degree));
   const double ew = mean_unoriented_deviation(w, truth), ej = mean_unoriented_deviation(j, truth);
-  // The Wavejet fits the same quadratic, then re-fits in the corrected tangent plane, where the
-  // graph of a smooth surface loses the tilt-induced odd terms: it must not be less accurate.
-  // Slack 5%: both errors are truncation errors of the same order, and the re-fit is kept only
-  // when it lowers |f_{1,1}|, not the true error (spec §2.5).
-  report_group("3. normal accuracy on " + name + " (k=18, order 2)", ew <= ej * 1.05,
-               "mean angle error: Wavejet " + fmt(ew) + " rad, CGAL jet " + fmt(ej) + " rad");
+  report_group("3. normal accuracy on " + name + " (k=" + std::to_string(k) + ", order " + std::to_string(degree) + ")",
+               ew <= ej * factor,
+               "mean angle error: Wavejet " + fmt(ew) + " rad, CGAL jet " + fmt(ej) + " rad (ratio " + fmt(ew / ej) +
+                 ", bound " + fmt(factor) + ")");
 }
 
 static PV_range make_sphere(std::size_t N, double R)
@@ -562,9 +561,29 @@ static void test_normals_vs_jets(const PV_range& kitten, const PV_range& fandisk
   // fandisk add a few larger deviations. Bound: 1 degree (kitten), 2 degrees (fandisk).
   compare_with_jets("kitten.xyz", kitten, 1.);
   compare_with_jets("fandisk (20k samples)", fandisk, 2.);
-  accuracy_vs_jets("unit sphere (10k Fibonacci)", make_sphere(10000, 1.));
+  // Accuracy against the analytic normals, same k and degree ("at least as accurate", issue 3).
+  // The Wavejet fits the same polynomial as the jet in the PCA frame, then re-fits in the
+  // corrected tangent plane and takes the normal there. Tilting a graph by gamma turns its
+  // degree-m terms into degree-(m+1) terms proportional to gamma; the PCA frame is tilted, the
+  // corrected one (nearly) not. At an even degree d the tilt-induced term of degree d+1 is the
+  // leading error of the jet's gradient and the correction removes it: the Wavejet is strictly
+  // more accurate (measured mean-error ratio Wavejet/jet: sphere 0.32 (d = 2), 0.62 (d = 4);
+  // torus 0.986 (d = 2), 0.936 (d = 4)), asserted as ew <= ej. At an odd degree d the
+  // tilt-induced term of degree d+1 comes from the degree-d term, which both fits represent: the
+  // leading error (the intrinsic degree-(d+1) term) is the same for both, and the correction only
+  // removes a term of degree d+2; the two errors are equal up to sampling noise (measured at
+  // d = 3: sphere 1.0004, torus 0.9988). There "at least as accurate" cannot be guaranteed; the
+  // bound asserted is ew <= 1.01 ej (the two are equal to that precision).
+  const PV_range sphere = make_sphere(10000, 1.);
   std::vector<double> H, KG;
-  accuracy_vs_jets("torus R=1 r=0.4 (20k)", make_torus(20000, 1., 0.4, H, KG));
+  const PV_range torus = make_torus(20000, 1., 0.4, H, KG);
+  for(unsigned int d = 2; d <= 4; ++d)
+  {
+    const unsigned int kk = d == 2 ? 18 : 40;
+    const double factor = d % 2 == 0 ? 1. : 1.01;
+    accuracy_vs_jets("unit sphere (10k Fibonacci)", sphere, kk, d, factor);
+    accuracy_vs_jets("torus R=1 r=0.4 (20k)", torus, kk, d, factor);
+  }
 }
 
 // ---------------------------------------------------------------------------------------------
