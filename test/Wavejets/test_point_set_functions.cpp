@@ -553,6 +553,31 @@ static PV_range make_torus(std::size_t N, double R, double r, std::vector<double
   return pts;
 }
 
+// The same torus with its principal curvatures k1 >= k2 (outward normal) and directions:
+// k1 = -cos v/(R + r cos v) along the parallel (d/du), k2 = -1/r along the meridian (d/dv); with
+// R > 2r, k1 >= -1/(R + r) > -1/r = k2 everywhere (no umbilic: gap k1 - k2 >= 1/r - 1/(R + r)).
+struct Torus_truth
+{
+  std::vector<double> H, KG, k1, k2;
+  std::vector<Vector> d1, d2;
+};
+static PV_range make_torus(std::size_t N, double R, double r, Torus_truth& t)
+{
+  PV_range pts = make_torus(N, R, r, t.H, t.KG);
+  const double phi = (std::sqrt(5.) - 1.) / 2.;
+  for(std::size_t i = 0; i < N; ++i)
+  {
+    const double u = 2. * PI * (double(i) + 0.5) / double(N);
+    const double v = 2. * PI * std::fmod(double(i) * phi, 1.);
+    const double cu = std::cos(u), su = std::sin(u), cv = std::cos(v), sv = std::sin(v);
+    t.k1.push_back(-cv / (R + r * cv));
+    t.k2.push_back(-1. / r);
+    t.d1.push_back(Vector(-su, cu, 0.));
+    t.d2.push_back(Vector(-sv * cu, -sv * su, cv));
+  }
+  return pts;
+}
+
 static void test_normals_vs_jets(const PV_range& kitten, const PV_range& fandisk)
 {
   // With equal neighborhoods and degree, the two estimators differ only by the Wavejet's
@@ -594,52 +619,83 @@ static void test_curvatures(const PV_range& kitten)
   Point_map pm;
   Normal_map nm;
   const std::size_t k = 40;
-  // 4a. Sphere R = 2 (outward normals): H = -1/R, K_G = 1/R^2. Order 4 fits the height series up
-  // to r^4; the first neglected term r^6/(16 R^5) changes the fitted second derivatives by
-  // ~ rho^4/(16 R^5) (rho = neighborhood radius): bound (rho/R)^4/R on |H + 1/R| and
-  // 2 (rho/R)^4/R^2 on |K_G - 1/R^2| (K_G = k1 k2, each k off by that much).
+  // 4a. Sphere R = 2 (outward normals): H = -1/R, K_G = 1/R^2, k1 = k2 = -1/R. Order 4 fits the
+  // height series up to r^4; the first neglected term r^6/(16 R^5) changes the fitted second
+  // derivatives by ~ rho^4/(16 R^5) (rho = neighborhood radius): bound (rho/R)^4/R on |H + 1/R|
+  // and on |k1 + 1/R|, |k2 + 1/R| (eigenvalues of the fitted shape operator move at most by the
+  // perturbation of its entries), 2 (rho/R)^4/R^2 on |K_G - 1/R^2| (K_G = k1 k2). The sphere is
+  // umbilic: the principal directions are any tangent pair, so only their geometry is checked:
+  // unit, orthogonal to each other (1e-12), and tangent to the sphere within the fitted frame's
+  // tilt, bounded like the normal error of an order-4 fit: the neglected term r^6/(16 R^5) of the
+  // height series tilts the fitted gradient by at most ~ rho^5/(16 R^5): bound (rho/R)^5/16
+  // (measured ~20x below it: the sampling is nearly symmetric).
   {
     const double R = 2.;
     PV_range pts = make_sphere(10000, R);
-    std::vector<double> Hm, Km;
+    std::vector<double> Hm, Km, k1, k2;
+    std::vector<Vector> d1, d2;
     CGAL::wavejet_estimate_curvatures<CGAL::Parallel_if_available_tag>(pts, k,
       WJP::order(4).mean_curvature_map(slot_map(pts, Hm)).gaussian_curvature_map(slot_map(pts, Km))
+        .maximal_principal_curvature_map(slot_map(pts, k1)).minimal_principal_curvature_map(slot_map(pts, k2))
+        .maximal_principal_direction_map(slot_map(pts, d1)).minimal_principal_direction_map(slot_map(pts, d2))
         .point_map(pm).normal_map(nm));
     const double rho = max_knn_radius(pts, k, 100);
-    double eH = 0., eK = 0.;
+    double eH = 0., eK = 0., ek = 0., eorth = 0., etan = 0.;
     for(std::size_t i = 0; i < pts.size(); ++i)
     {
       eH = (std::max)(eH, std::abs(Hm[i] + 1. / R));
       eK = (std::max)(eK, std::abs(Km[i] - 1. / (R * R)));
+      ek = (std::max)({ek, std::abs(k1[i] + 1. / R), std::abs(k2[i] + 1. / R), k1[i] >= k2[i] ? 0. : 1e300});
+      const Vector n = pts[i].second;
+      eorth = (std::max)({eorth, std::abs(d1[i] * d2[i]), std::abs(d1[i].squared_length() - 1.),
+                          std::abs(d2[i].squared_length() - 1.)});
+      etan = (std::max)({etan, std::abs(d1[i] * n), std::abs(d2[i] * n)});
     }
-    const double bH = std::pow(rho / R, 4) / R, bK = 2. * std::pow(rho / R, 4) / (R * R);
-    report_group("4a. curvatures on sphere R=2 (k=40, K=4)", eH < bH && eK < bK,
+    const double bH = std::pow(rho / R, 4) / R, bK = 2. * std::pow(rho / R, 4) / (R * R), bt = std::pow(rho / R, 5) / 16.;
+    report_group("4a. curvatures on sphere R=2 (k=40, K=4): H, K_G, k1, k2, directions", eH < bH && eK < bK && ek < bH &&
+                   eorth < 1e-12 && etan < bt,
                  "max |H + 1/R| = " + fmt(eH) + " (bound " + fmt(bH) + "), max |K_G - 1/R^2| = " + fmt(eK) +
-                   " (bound " + fmt(bK) + ")");
+                   " (bound " + fmt(bK) + "), max |k_i + 1/R| = " + fmt(ek) + " (bound " + fmt(bH) +
+                   "), directions: orthonormality " + fmt(eorth) + " (bound 1e-12), max |d_i . n| = " + fmt(etan) +
+                   " (bound " + fmt(bt) + ")");
   }
-  // 4b. Torus R = 1, r = 0.4 (outward normals, known H and K_G). Its graph over the tangent plane
-  // is not symmetric: the first term a K = 4 fit neglects is of degree 5, ~ rho^5/r^4 in height,
-  // which shifts the fitted second derivatives by ~ rho^3/r^4: bound (rho/r)^3/r on |dH|, and
-  // (rho/r)^3 (|k1| + |k2|)/r on |dK_G| (K_G = k1 k2), with |k1| + |k2| <= 1/r + 1/(R - r).
+  // 4b. Torus R = 1, r = 0.4 (outward normals, known H, K_G, k1, k2 and directions). Its graph
+  // over the tangent plane is not symmetric: the first term a K = 4 fit neglects is of degree 5,
+  // ~ rho^5/r^4 in height, which shifts the fitted second derivatives by ~ rho^3/r^4: bound
+  // (rho/r)^3/r on |dH|, |dk1|, |dk2| (eigenvalues, as in 4a), and (rho/r)^3 (|k1| + |k2|)/r on
+  // |dK_G| (K_G = k1 k2), with |k1| + |k2| <= 1/r + 1/(R - r). Principal directions (up to sign):
+  // an eigenvector of the shape operator turns by at most (perturbation) / (gap k1 - k2), so the
+  // sine of its angle to the truth is bounded by (rho/r)^3/r / (k1 - k2) at each point.
   {
     const double R = 1., r = 0.4;
-    std::vector<double> Ht, Kt;
-    PV_range pts = make_torus(20000, R, r, Ht, Kt);
-    std::vector<double> Hm, Km;
+    Torus_truth tt;
+    PV_range pts = make_torus(20000, R, r, tt);
+    std::vector<double> Hm, Km, k1, k2;
+    std::vector<Vector> d1, d2;
     CGAL::wavejet_estimate_curvatures<CGAL::Parallel_if_available_tag>(pts, k,
       WJP::order(4).mean_curvature_map(slot_map(pts, Hm)).gaussian_curvature_map(slot_map(pts, Km))
+        .maximal_principal_curvature_map(slot_map(pts, k1)).minimal_principal_curvature_map(slot_map(pts, k2))
+        .maximal_principal_direction_map(slot_map(pts, d1)).minimal_principal_direction_map(slot_map(pts, d2))
         .point_map(pm).normal_map(nm));
     const double rho = max_knn_radius(pts, k, 100);
-    double eH = 0., eK = 0.;
+    const double bH = std::pow(rho / r, 3) / r, bK = std::pow(rho / r, 3) * (1. / r + 1. / (R - r)) / r;
+    double eH = 0., eK = 0., ek1 = 0., ek2 = 0., edir = 0., edir_ratio = 0.;
     for(std::size_t i = 0; i < pts.size(); ++i)
     {
-      eH = (std::max)(eH, std::abs(Hm[i] - Ht[i]));
-      eK = (std::max)(eK, std::abs(Km[i] - Kt[i]));
+      eH = (std::max)(eH, std::abs(Hm[i] - tt.H[i]));
+      eK = (std::max)(eK, std::abs(Km[i] - tt.KG[i]));
+      ek1 = (std::max)(ek1, std::abs(k1[i] - tt.k1[i]));
+      ek2 = (std::max)(ek2, std::abs(k2[i] - tt.k2[i]));
+      const double a = (std::max)(std::sin(unoriented_angle(d1[i], tt.d1[i])), std::sin(unoriented_angle(d2[i], tt.d2[i])));
+      edir = (std::max)(edir, a);
+      edir_ratio = (std::max)(edir_ratio, a / (bH / (tt.k1[i] - tt.k2[i])));
     }
-    const double bH = std::pow(rho / r, 3) / r, bK = std::pow(rho / r, 3) * (1. / r + 1. / (R - r)) / r;
-    report_group("4b. curvatures on torus R=1 r=0.4 (k=40, K=4)", eH < bH && eK < bK,
+    report_group("4b. curvatures on torus R=1 r=0.4 (k=40, K=4): H, K_G, k1, k2, directions",
+                 eH < bH && eK < bK && ek1 < bH && ek2 < bH && edir_ratio < 1.,
                  "rho = " + fmt(rho) + ", max |dH| = " + fmt(eH) + " (bound " + fmt(bH) + "), max |dK_G| = " + fmt(eK) +
-                   " (bound " + fmt(bK) + ")");
+                   " (bound " + fmt(bK) + "), max |dk1| = " + fmt(ek1) + ", max |dk2| = " + fmt(ek2) + " (bound " +
+                   fmt(bH) + "), max sin(direction error) = " + fmt(edir) + " (worst ratio to its bound " +
+                   fmt(edir_ratio) + ")");
   }
   // 4c. kitten vs CGAL::Monge_via_jet_fitting, degrees 2-4, k = 18: same points (query first,
   // then its k nearest, excluding itself, ties by index), same PCA frame (curvature from the
