@@ -26,12 +26,14 @@
 #include <CGAL/wavejet_enhance_normals.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <complex>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <functional>
 #include <iostream>
 #include <limits>
 #include <random>
@@ -868,6 +870,53 @@ static void test_contract(const PV_range& kitten)
     report_group("5c. interrupted call changes nothing and reports interrupted", ok,
                  std::to_string(calls1) + " callback calls before stopping");
   }
+  // 5c'. The same under Parallel_tag. The callback then runs on a thread of its own (CGAL's
+  // Callback_wrapper<Parallel_tag> polls the progress every 10 us) and the TBB workers check its
+  // flag before each point; it returns false from 30% on. Every output must be unchanged (points,
+  // normals, the curvature maps and fitted_map preset to sentinels) and the report interrupted.
+#ifdef CGAL_LINKED_WITH_TBB
+  {
+    bool ok = true;
+    std::atomic<std::size_t> calls(0);
+    const std::function<bool(double)> cb = [&](double p) { ++calls; return p < 0.3; };
+    const std::size_t N = kitten.size();
+    auto fitted_untouched = [N](const std::vector<char>& f) {
+      return f.size() == N && std::all_of(f.begin(), f.end(), [](char c) { return c == 2; });
+    };
+    PV_range a = kitten;
+    std::vector<char> fitted(N, 2);
+    CGAL::Wavejets::Processing_report r = CGAL::wavejet_enhance_positions<Par>(a, 30, 2.,
+      WJP::order(3).write_normals(true).fitted_map(slot_map(a, fitted)).point_map(pm).normal_map(nm).callback(cb));
+    ok = ok && r.interrupted && same_bits(a, kitten) && fitted_untouched(fitted);
+    std::string numbers = "enhance_positions " + std::to_string(calls.load()) + " callback calls";
+    a = kitten;
+    fitted.assign(N, 2);
+    r = CGAL::wavejet_estimate_normals<Par>(a, 18,
+          WJP::order(2).fitted_map(slot_map(a, fitted)).point_map(pm).normal_map(nm).callback(cb));
+    ok = ok && r.interrupted && same_bits(a, kitten) && fitted_untouched(fitted);
+    a = kitten;
+    fitted.assign(N, 2);
+    std::vector<double> H(N, 7.), k1(N, 7.);
+    std::vector<Vector> d1(N, Vector(7., 7., 7.));
+    r = CGAL::wavejet_estimate_curvatures<Par>(a, 18,
+          WJP::mean_curvature_map(slot_map(a, H)).maximal_principal_curvature_map(slot_map(a, k1))
+            .maximal_principal_direction_map(slot_map(a, d1)).fitted_map(slot_map(a, fitted))
+            .point_map(pm).normal_map(nm).callback(cb));
+    ok = ok && r.interrupted && same_bits(a, kitten) && fitted_untouched(fitted) &&
+         std::all_of(H.begin(), H.end(), [](double h) { return h == 7.; }) &&
+         std::all_of(k1.begin(), k1.end(), [](double h) { return h == 7.; }) &&
+         std::all_of(d1.begin(), d1.end(), [](const Vector& v) { return v == Vector(7., 7., 7.); });
+    a = kitten;
+    fitted.assign(N, 2);
+    r = CGAL::wavejet_enhance_normals<Par>(a, 18, std::complex<double>(2., 1.),
+          WJP::order(3).fitted_map(slot_map(a, fitted)).point_map(pm).normal_map(nm).callback(cb));
+    ok = ok && r.interrupted && same_bits(a, kitten) && fitted_untouched(fitted);
+    report_group("5c'. Parallel_tag: interrupted call changes nothing and reports interrupted (4 functions)", ok,
+                 numbers + ", " + std::to_string(calls.load()) + " in all");
+  }
+#else
+  report_group("5c'. Parallel_tag interruption: skipped, TBB not linked", true, "");
+#endif
   // 5d. Unfittable points with radius neighborhoods: an isolated far point and a NaN point.
   {
     PV_range pts = make_sphere(3000, 1.);
