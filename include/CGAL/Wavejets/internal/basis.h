@@ -80,6 +80,51 @@ inline void evaluate_basis(double x, double y, std::size_t order, double* row)
   }
 }
 
+/// The same basis at L points (x[l], y[l]), column-major: column b of the layout above starts at
+/// A + b * P (P >= L), and rows L..P-1 (padding) are set to zero. Columnwise recurrences, with the
+/// operations of evaluate_basis() (bitwise the same values), vectorizable along the points.
+inline void evaluate_basis_columns(const double* x, const double* y, std::size_t L, std::size_t P,
+                                   std::size_t order, double* A)
+{
+  for(std::size_t l = 0; l < L; ++l) A[l] = 1.;
+  for(std::size_t l = L; l < P; ++l) A[l] = 0.;
+  for(std::size_t k = 1; k <= order; ++k)
+  {
+    const std::size_t o = order_offset(k);
+    if(k >= 2)
+    {
+      const std::size_t o2 = order_offset(k - 2);
+      for(std::size_t j = 0; j + 1 < k; ++j)
+      {
+        const double* below = A + (o2 + j) * P;
+        double* column = A + (o + j) * P;
+        for(std::size_t l = 0; l < L; ++l) column[l] = (x[l] * x[l] + y[l] * y[l]) * below[l];
+        for(std::size_t l = L; l < P; ++l) column[l] = 0.;
+      }
+    }
+    // (x + i y)^k from (x + i y)^{k-1}: the last two columns of order k-1 (1 and 0 for k = 1).
+    double* re = A + (o + k - 1) * P;
+    double* im = A + (o + k) * P;
+    if(k == 1)
+      for(std::size_t l = 0; l < P; ++l)
+      {
+        const double wr = A[l], wi = 0.;
+        re[l] = wr * x[l] - wi * y[l];
+        im[l] = wr * y[l] + wi * x[l];
+      }
+    else
+    {
+      const double* pre = A + (order_offset(k - 1) + k - 2) * P;
+      const double* pim = A + (order_offset(k - 1) + k - 1) * P;
+      for(std::size_t l = 0; l < P; ++l)
+      {
+        re[l] = pre[l] * x[l] - pim[l] * y[l];
+        im[l] = pre[l] * y[l] + pim[l] * x[l];
+      }
+    }
+  }
+}
+
 /// Height of the Wavejet with real unknowns `c` at (x, y).
 inline double evaluate_height(const double* c, std::size_t order, double x, double y, double* scratch_row)
 {

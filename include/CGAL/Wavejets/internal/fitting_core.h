@@ -251,33 +251,40 @@ private:
     return r;
   }
 
-  // Builds the system in `frame` and solves it (with optional IRLS passes) into `c`.
+  // Builds the system in `frame` (basis_: column-major, column stride padded_rows(L), zero
+  // padding rows) and solves it (with optional IRLS passes) into `c`.
   bool fit_in_frame(std::size_t L, std::size_t order, const Frame& frame, std::size_t robust_iterations,
                     std::vector<double>& c)
   {
     const std::size_t B = number_of_coefficients(order);
-    basis_.resize(L * B); // row-major: basis_[l * B + b]
-    heights_.resize(L);
-    c.resize(B);
+    const std::size_t P = padded_rows(L);
+    basis_.resize(P * B);
+    heights_.resize(P);
+    xs_.resize(P);
+    ys_.resize(P);
     for(std::size_t l = 0; l < L; ++l)
     {
       const Eigen::Vector3d& d = scaled_[l];
-      evaluate_basis(d.dot(frame.u), d.dot(frame.v), order, basis_.data() + l * B);
+      xs_[l] = d.dot(frame.u);
+      ys_[l] = d.dot(frame.v);
       heights_[l] = d.dot(frame.n);
     }
+    for(std::size_t l = L; l < P; ++l) xs_[l] = ys_[l] = heights_[l] = 0.;
+    evaluate_basis_columns(xs_.data(), ys_.data(), L, P, order, basis_.data());
+    c.resize(B);
     if(!solve_weighted(L, B, nullptr, c))
       return false;
 
     for(std::size_t it = 0; it < robust_iterations; ++it)
     {
       // Tukey biweight on residuals scaled by 1.4826 MAD.
-      residual_.resize(L);
-      for(std::size_t l = 0; l < L; ++l)
+      residual_.assign(L, 0.);
+      for(std::size_t b = 0; b < B; ++b)
       {
-        double z = 0.;
-        for(std::size_t b = 0; b < B; ++b) z += basis_[l * B + b] * c[b];
-        residual_[l] = std::abs(heights_[l] - z);
+        const double* column = basis_.data() + b * P;
+        for(std::size_t l = 0; l < L; ++l) residual_[l] += column[l] * c[b];
       }
+      for(std::size_t l = 0; l < L; ++l) residual_[l] = std::abs(heights_[l] - residual_[l]);
       sorted_.assign(residual_.begin(), residual_.end());
       std::nth_element(sorted_.begin(), sorted_.begin() + L / 2, sorted_.end());
       const double scale = 1.4826 * sorted_[L / 2];
@@ -297,31 +304,24 @@ private:
     return true;
   }
 
-  // Least squares with rows scaled by sqrt_weights (null: unweighted). Keeps basis_ intact.
+  // Least squares with rows scaled by sqrt_weights (null: unweighted), on a copy of the system
+  // (basis_ and heights_ are kept for the reweighted passes).
   bool solve_weighted(std::size_t L, std::size_t B, const double* sqrt_weights, std::vector<double>& c)
   {
-    // Row-major [A | b], row stride B + 1.
-    const std::size_t S = B + 1;
-    work_.resize(L * S + householder_padding);
-    for(std::size_t l = 0; l < L; ++l)
-    {
-      const double* a = basis_.data() + l * B;
-      double* r = work_.data() + l * S;
-      if(sqrt_weights)
+    // Column-major [A | b], column stride P, zero padding rows (see least_squares.h).
+    const std::size_t P = padded_rows(L);
+    work_.resize(P * (B + 1));
+    std::copy(basis_.begin(), basis_.begin() + P * B, work_.begin());
+    std::copy(heights_.begin(), heights_.begin() + P, work_.begin() + P * B);
+    if(sqrt_weights)
+      for(std::size_t b = 0; b <= B; ++b)
       {
-        const double sw = sqrt_weights[l];
-        for(std::size_t b = 0; b < B; ++b) r[b] = a[b] * sw;
-        r[B] = heights_[l] * sw;
+        double* column = work_.data() + b * P;
+        for(std::size_t l = 0; l < L; ++l) column[l] *= sqrt_weights[l];
       }
-      else
-      {
-        for(std::size_t b = 0; b < B; ++b) r[b] = a[b];
-        r[B] = heights_[l];
-      }
-    }
-    rhs_.resize(S + householder_padding); // scratch of the solver
+    householder_scratch_.resize(P);
     c.resize(B);
-    if(!householder_least_squares_rows(work_.data(), L, B, rhs_.data(), c.data()))
+    if(!householder_least_squares(work_.data(), L, B, householder_scratch_.data(), c.data()))
       return false;
     for(std::size_t b = 0; b < B; ++b)
       if(!std::isfinite(c[b])) return false;
@@ -329,7 +329,7 @@ private:
     {
       Eigen::MatrixXd R = Eigen::MatrixXd::Zero(B, B);
       for(std::size_t j = 0; j < B; ++j)
-        for(std::size_t i = 0; i <= j; ++i) R(i, j) = work_[i * S + j];
+        for(std::size_t i = 0; i <= j; ++i) R(i, j) = work_[j * P + i];
       Eigen::JacobiSVD<Eigen::MatrixXd> svd(R);
       const Eigen::VectorXd sv = svd.singularValues();
       condition_ = sv(B - 1) > 0 ? sv(0) / sv(B - 1) : std::numeric_limits<double>::infinity();
@@ -340,7 +340,7 @@ private:
   bool want_condition_ = false;
   double condition_ = 0.;
   std::vector<Eigen::Vector3d> scaled_;
-  std::vector<double> basis_, work_, heights_, rhs_, residual_, sorted_, weights_;
+  std::vector<double> basis_, work_, heights_, xs_, ys_, householder_scratch_, residual_, sorted_, weights_;
   std::vector<double> first_, trial_, best_, trial_solution_;
 };
 

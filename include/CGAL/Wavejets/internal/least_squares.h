@@ -10,25 +10,29 @@
 #ifndef CGAL_WAVEJETS_INTERNAL_LEAST_SQUARES_H
 #define CGAL_WAVEJETS_INTERNAL_LEAST_SQUARES_H
 
-// Dense least squares min ||A c - b|| by Householder QR, in place on caller-owned scratch
-// (row-major, right-hand side as an extra column), without heap allocation. The normal
-// equations are not used: the Wavejet systems are too ill-conditioned for them.
-// The reflections are applied row by row so that the dot products of one reflection with all the
-// trailing columns run side by side (vectorizable), each still summed in increasing row order.
+// Dense least squares min ||A c - b|| by Householder QR, in place on caller-owned scratch, without
+// heap allocation. The normal equations are not used: the Wavejet systems are too ill-conditioned
+// for them.
+//
+// Layout: column-major, every column (the right-hand side is one more column) padded with zero
+// rows to a multiple of `householder_block` rows. Each dot product runs over whole blocks with
+// `householder_block` independent partial sums (one per row residue), so it is vectorized along
+// the rows and not bound by the latency of one long chain of additions; reflections are applied
+// to four trailing columns at a time so that the Householder vector is loaded once for four
+// columns. A column's dot product (hence the result) does not depend on that grouping, nor on the
+// vector width the compiler picked: the partial sums and their final reduction are always the
+// same, so the SSE2 and AVX code give bitwise identical results.
 
-#include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstring>
 
-#if defined(__GNUC__) || defined(__clang__) || defined(_MSC_VER)
-#define CGAL_WAVEJETS_RESTRICT __restrict
-#else
-#define CGAL_WAVEJETS_RESTRICT
-#endif
-
-// x86 with GCC or Clang: the row-major solver is also compiled for AVX (without FMA, so the
-// arithmetic, hence the result, is bitwise the same as the SSE2 code) and picked at run time.
-// Define CGAL_WAVEJETS_NO_AVX_DISPATCH to switch this off.
+// x86 with GCC or Clang: the solver is also compiled for AVX (without FMA, so the arithmetic,
+// hence the result, is bitwise the same as the SSE2 code) and for AVX2 with FMA (the compiler fuses
+// multiply-adds, ~1.3x faster; results differ in the last bits from the other two), and the best
+// one the processor supports is picked at run time, the same for every call: results never depend
+// on the thread or on the ConcurrencyTag. Define CGAL_WAVEJETS_NO_AVX_DISPATCH to switch this off
+// (baseline code only), CGAL_WAVEJETS_NO_FMA_DISPATCH to keep only the AVX variant.
 #if (defined(__GNUC__) || defined(__clang__)) && (defined(__x86_64__) || defined(__i386__)) && \
     !defined(CGAL_WAVEJETS_NO_AVX_DISPATCH) && !defined(__FMA__)
 #define CGAL_WAVEJETS_AVX_DISPATCH 1
@@ -45,111 +49,213 @@ namespace internal {
 /// is below this fraction of its norm (numerical rank test of the non-pivoted QR).
 constexpr double rank_tolerance = 1e-10;
 
-/// Extra doubles after the matrix and the scratch of householder_least_squares_rows().
-constexpr std::size_t householder_padding = 16;
+/// Row blocking of the solver: column strides are multiples of it.
+constexpr std::size_t householder_block = 8;
 
-/// w[t] = sum_{i = j}^{rows-1} M(i, j) M(i, l + t), t < W, summed in increasing i (each in its own
-/// register: no latency-bound chain through memory). Row-major M with row stride S.
-template <int W>
-CGAL_WAVEJETS_KERNEL_INLINE void householder_dots(const double* M, std::size_t S, std::size_t j, std::size_t rows, std::size_t l,
-                             double* w)
+/// Column stride for `rows` rows: `rows` rounded up to a multiple of householder_block.
+inline std::size_t padded_rows(std::size_t rows)
 {
-  double acc[W];
-  for(int t = 0; t < W; ++t) acc[t] = 0.;
-  for(std::size_t i = j; i < rows; ++i)
-  {
-    const double vi = M[i * S + j];
-    const double* row = M + i * S + l;
-    for(int t = 0; t < W; ++t) acc[t] += vi * row[t];
-  }
-  for(int t = 0; t < W; ++t) w[t] = acc[t];
+  return (rows + householder_block - 1) / householder_block * householder_block;
 }
 
-/// Kernel of householder_least_squares_rows(). Column j's reflection v = x - alpha e_j
-/// (alpha = -sign(x_j)|x|) is applied to the trailing columns; a column whose part orthogonal to
-/// the previous ones is below rank_tolerance of its norm makes the solve fail. The dot products
-/// of a reflection with all trailing columns are accumulated together (vectorizable across
-/// columns) instead of one latency-bound reduction per column. On return M holds R in its upper
-/// triangle and c the solution (back substitution).
-CGAL_WAVEJETS_KERNEL_INLINE bool householder_rows_kernel(double* M, std::size_t rows, std::size_t cols, double* w,
-                                                     double* c)
+/// Sum of the householder_block partial sums, in a fixed order.
+CGAL_WAVEJETS_KERNEL_INLINE double reduce_block(const double* acc)
 {
-  if(rows < cols)
+  return ((acc[0] + acc[4]) + (acc[2] + acc[6])) + ((acc[1] + acc[5]) + (acc[3] + acc[7]));
+}
+
+#if defined(__GNUC__) || defined(__clang__)
+/// Four doubles (GCC/Clang vector extension: one AVX register, or two SSE2 registers with the same
+/// per-lane arithmetic). Unaligned memory is read and written with memcpy.
+typedef double Double4 __attribute__((vector_size(32)));
+
+CGAL_WAVEJETS_KERNEL_INLINE void load4(Double4& r, const double* p) { std::memcpy(&r, p, sizeof r); }
+CGAL_WAVEJETS_KERNEL_INLINE void store4(double* p, const Double4& x) { std::memcpy(p, &x, sizeof x); }
+
+/// w[m] = sum_{i = begin}^{end-1} v[i] x_m[i] for the M columns x_m = X + m * P (begin, end:
+/// multiples of householder_block), with one partial sum per row residue (see reduce_block()).
+template <int M>
+CGAL_WAVEJETS_KERNEL_INLINE void householder_dots(const double* v, const double* X, std::size_t P,
+                                                 std::size_t begin, std::size_t end, double* w)
+{
+  static_assert(householder_block == 8, "two Double4 per block");
+  Double4 lo[M], hi[M]; // partial sums of the row residues 0..3 and 4..7
+  for(int m = 0; m < M; ++m) { lo[m] = Double4{0., 0., 0., 0.}; hi[m] = lo[m]; }
+  for(std::size_t i = begin; i < end; i += householder_block)
+  {
+    Double4 v_lo, v_hi, x_lo, x_hi;
+    load4(v_lo, v + i);
+    load4(v_hi, v + i + 4);
+    for(int m = 0; m < M; ++m)
+    {
+      load4(x_lo, X + m * P + i);
+      load4(x_hi, X + m * P + i + 4);
+      lo[m] += v_lo * x_lo;
+      hi[m] += v_hi * x_hi;
+    }
+  }
+  for(int m = 0; m < M; ++m)
+  {
+    double acc[householder_block];
+    store4(acc, lo[m]);
+    store4(acc + 4, hi[m]);
+    w[m] = reduce_block(acc);
+  }
+}
+
+/// x_m[i] -= s[m] v[i] for the M columns x_m = X + m * P, rows begin..end-1 (multiples of
+/// householder_block).
+template <int M>
+CGAL_WAVEJETS_KERNEL_INLINE void householder_updates(const double* v, double* X, std::size_t P, std::size_t begin,
+                                                    std::size_t end, const double* s)
+{
+  Double4 sm[M];
+  const Double4 zero = {0., 0., 0., 0.};
+  for(int m = 0; m < M; ++m) sm[m] = zero + s[m]; // broadcast
+  for(std::size_t i = begin; i < end; i += householder_block)
+  {
+    Double4 v_lo, v_hi, x_lo, x_hi;
+    load4(v_lo, v + i);
+    load4(v_hi, v + i + 4);
+    for(int m = 0; m < M; ++m)
+    {
+      double* x = X + m * P + i;
+      load4(x_lo, x);
+      load4(x_hi, x + 4);
+      x_lo -= sm[m] * v_lo;
+      x_hi -= sm[m] * v_hi;
+      store4(x, x_lo);
+      store4(x + 4, x_hi);
+    }
+  }
+}
+#else
+/// w[m] = sum_{i = begin}^{end-1} v[i] x_m[i] for the M columns x_m = X + m * P (begin, end:
+/// multiples of householder_block), with one partial sum per row residue (see reduce_block()).
+template <int M>
+CGAL_WAVEJETS_KERNEL_INLINE void householder_dots(const double* v, const double* X, std::size_t P,
+                                                 std::size_t begin, std::size_t end, double* w)
+{
+  constexpr std::size_t W = householder_block;
+  for(int m = 0; m < M; ++m)
+  {
+    double acc[W] = {0., 0., 0., 0., 0., 0., 0., 0.};
+    for(std::size_t i = begin; i < end; i += W)
+      for(std::size_t t = 0; t < W; ++t) acc[t] += v[i + t] * X[m * P + i + t];
+    w[m] = reduce_block(acc);
+  }
+}
+
+/// x_m[i] -= s[m] v[i] for the M columns x_m = X + m * P, rows begin..end-1.
+template <int M>
+CGAL_WAVEJETS_KERNEL_INLINE void householder_updates(const double* v, double* X, std::size_t P, std::size_t begin,
+                                                    std::size_t end, const double* s)
+{
+  for(int m = 0; m < M; ++m)
+    for(std::size_t i = begin; i < end; ++i) X[m * P + i] -= s[m] * v[i];
+}
+#endif
+
+/// Householder vector of column j (rows j.., j0 = the block of row j) into v, zero on rows j0..j-1;
+/// `beta` = 2 / v.v and `alpha` = -sign(x_j)|x| (the diagonal entry of R). Returns false if the
+/// part of the column orthogonal to the previous ones is below rank_tolerance of its norm.
+CGAL_WAVEJETS_KERNEL_INLINE bool householder_vector(const double* A, std::size_t P, std::size_t j, std::size_t j0,
+                                                   double* v, double& beta, double& alpha)
+{
+  const double* a = A + j * P;
+  for(std::size_t i = j0; i < j; ++i) v[i] = 0.;
+  for(std::size_t i = j; i < P; ++i) v[i] = a[i];
+  double tail2;
+  householder_dots<1>(v, v, P, j0, P, &tail2);
+  double full2 = tail2;
+  for(std::size_t i = 0; i < j; ++i) full2 += a[i] * a[i];
+  const double tail = std::sqrt(tail2);
+  if(!(tail > rank_tolerance * std::sqrt(full2)))
+    return false; // also catches a zero column and NaN
+  const double ajj = a[j];
+  alpha = ajj >= 0 ? -tail : tail;
+  const double v0 = ajj - alpha;
+  beta = 2. / (tail2 - ajj * ajj + v0 * v0);
+  v[j] = v0;
+  return true;
+}
+
+/// Kernel of householder_least_squares(). Column j's reflection is applied to the trailing columns
+/// (four at a time); every loop runs over whole blocks from the block that holds row j (the zeros
+/// of the Householder vector above row j leave those rows unchanged).
+CGAL_WAVEJETS_KERNEL_INLINE bool householder_kernel(double* A, std::size_t rows, std::size_t cols, double* v,
+                                                   double* c)
+{
+  if(rows < cols || cols == 0)
     return false;
-  const std::size_t S = cols + 1;
-  double tail2 = 0.; // of column 0, then of the next column (accumulated during each update)
-  for(std::size_t i = 0; i < rows; ++i) tail2 += M[i * S] * M[i * S];
+  const std::size_t P = padded_rows(rows);
   for(std::size_t j = 0; j < cols; ++j)
   {
-    double full2 = 0.;
-    for(std::size_t i = 0; i < j; ++i) full2 += M[i * S + j] * M[i * S + j];
-    full2 += tail2;
-    const double tail = std::sqrt(tail2);
-    if(!(tail > rank_tolerance * std::sqrt(full2)))
-      return false; // also catches a zero column and NaN
-    const double ajj = M[j * S + j];
-    const double alpha = ajj >= 0 ? -tail : tail;
-    const double v0 = ajj - alpha;
-    const double vtv = tail2 - ajj * ajj + v0 * v0;
-    M[j * S + j] = v0;
-    const double beta = 2. / vtv;
-    const std::size_t l0 = j + 1, n = S - l0; // trailing columns, right-hand side included
-    double* CGAL_WAVEJETS_RESTRICT wl = w + l0;
-    // All the column sums of a block run side by side (independent chains); the last block is
-    // rounded up to a power of two, its extra sums (read from the padding) are ignored.
-    std::size_t l = 0;
-    for(; l + 16 <= n; l += 16) householder_dots<16>(M, S, j, rows, l0 + l, wl + l);
-    const std::size_t r = n - l;
-    if(r > 8) householder_dots<16>(M, S, j, rows, l0 + l, wl + l);
-    else if(r > 4) householder_dots<8>(M, S, j, rows, l0 + l, wl + l);
-    else if(r > 2) householder_dots<4>(M, S, j, rows, l0 + l, wl + l);
-    else if(r == 2) householder_dots<2>(M, S, j, rows, l0 + l, wl + l);
-    else if(r == 1) householder_dots<1>(M, S, j, rows, l0 + l, wl + l);
-    for(std::size_t l = 0; l < n; ++l) wl[l] *= beta;
+    const std::size_t j0 = j / householder_block * householder_block;
+    double beta, alpha;
+    if(!householder_vector(A, P, j, j0, v, beta, alpha))
+      return false;
+    // Trailing columns j+1..cols (the right-hand side included), four at a time.
+    std::size_t l = j + 1;
+    double s[4] = {0., 0., 0., 0.};
+    for(; l + 4 <= cols + 1; l += 4)
     {
-      const double vi = M[j * S + j];
-      double* CGAL_WAVEJETS_RESTRICT row = M + j * S + l0;
-      for(std::size_t l = 0; l < n; ++l) row[l] -= wl[l] * vi;
+      householder_dots<4>(v, A + l * P, P, j0, P, s);
+      for(int m = 0; m < 4; ++m) s[m] *= beta;
+      householder_updates<4>(v, A + l * P, P, j0, P, s);
     }
-    tail2 = 0.;
-    for(std::size_t i = j + 1; i < rows; ++i)
+    for(; l <= cols; ++l)
     {
-      const double vi = M[i * S + j];
-      double* CGAL_WAVEJETS_RESTRICT row = M + i * S + l0;
-      for(std::size_t l = 0; l < n; ++l) row[l] -= wl[l] * vi;
-      tail2 += row[0] * row[0]; // column j + 1 (the right-hand side when j + 1 == cols: unused)
+      householder_dots<1>(v, A + l * P, P, j0, P, s);
+      s[0] *= beta;
+      householder_updates<1>(v, A + l * P, P, j0, P, s);
     }
-    M[j * S + j] = alpha;
+    A[j * P + j] = alpha; // diagonal of R
   }
+  const double* b = A + cols * P;
   for(std::size_t jj = cols; jj-- > 0;)
   {
-    double s = M[jj * S + cols];
-    for(std::size_t l = jj + 1; l < cols; ++l) s -= M[jj * S + l] * c[l];
-    c[jj] = s / M[jj * S + jj];
+    double sum = b[jj];
+    for(std::size_t l = jj + 1; l < cols; ++l) sum -= A[l * P + jj] * c[l];
+    c[jj] = sum / A[jj * P + jj];
   }
   return true;
 }
 
 #ifdef CGAL_WAVEJETS_AVX_DISPATCH
-__attribute__((target("avx"))) inline bool householder_rows_avx(double* M, std::size_t rows, std::size_t cols,
-                                                                double* w, double* c)
+__attribute__((target("avx2,fma"))) inline bool householder_fma(double* A, std::size_t rows, std::size_t cols,
+                                                                double* v, double* c)
 {
-  return householder_rows_kernel(M, rows, cols, w, c);
+  return householder_kernel(A, rows, cols, v, c);
+}
+__attribute__((target("avx"))) inline bool householder_avx(double* A, std::size_t rows, std::size_t cols,
+                                                           double* v, double* c)
+{
+  return householder_kernel(A, rows, cols, v, c);
 }
 #endif
 
-/// Same solver on a row-major system: `M` is rows x (cols + 1) with row stride cols + 1, the
-/// right-hand side in its last column; `w` is scratch of cols + 1 doubles. Both arrays need
-/// `householder_padding` more readable doubles after their end (read and ignored). Returns false
-/// if the system has fewer rows than columns or is numerically rank-deficient.
-inline bool householder_least_squares_rows(double* M, std::size_t rows, std::size_t cols, double* w, double* c)
+/// Solves min ||A c - b|| for a rows x cols matrix `A`. `A` is column-major with column stride
+/// padded_rows(rows), followed by `b` as column `cols`; rows `rows`..padded_rows(rows)-1 of every
+/// column must be zero. `v` is scratch of padded_rows(rows) doubles. On return the upper triangle
+/// of the first `cols` columns holds R (R(i, j) = A[j * padded_rows(rows) + i], i <= j) and
+/// `c[0..cols-1]` the solution. Returns false if the system has fewer rows than columns or is
+/// numerically rank-deficient.
+inline bool householder_least_squares(double* A, std::size_t rows, std::size_t cols, double* v, double* c)
 {
 #ifdef CGAL_WAVEJETS_AVX_DISPATCH
-  static const bool avx = __builtin_cpu_supports("avx");
-  if(avx)
-    return householder_rows_avx(M, rows, cols, w, c);
+#ifndef CGAL_WAVEJETS_NO_FMA_DISPATCH
+  static const bool fma = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+#else
+  const bool fma = false;
 #endif
-  return householder_rows_kernel(M, rows, cols, w, c);
+  static const bool avx = __builtin_cpu_supports("avx");
+  if(fma)
+    return householder_fma(A, rows, cols, v, c);
+  if(avx)
+    return householder_avx(A, rows, cols, v, c);
+#endif
+  return householder_kernel(A, rows, cols, v, c);
 }
 
 } // namespace internal
