@@ -63,23 +63,26 @@ inline Curvature_info graph_curvature(const Height_derivatives& d,
   const double sg = std::sqrt(g);
   ci.gaussian = (d.fxx * d.fyy - d.fxy * d.fxy) / (g * g);
   ci.mean = ((1. + d.fy * d.fy) * d.fxx + (1. + d.fx * d.fx) * d.fyy - 2. * d.fx * d.fy * d.fxy) / (2. * g * sg);
-  const double disc = std::sqrt((std::max)(ci.mean * ci.mean - ci.gaussian, 0.));
-  ci.k1 = ci.mean + disc;
-  ci.k2 = ci.mean - disc;
   ci.normal = (n - d.fx * u - d.fy * v) / sg;
 
-  // Shape operator: II a = k I a with I = [[1+fx^2, fx fy], [fx fy, 1+fy^2]], II = Hessian / sqrt(g).
-  const double E = 1. + d.fx * d.fx, F = d.fx * d.fy, G = 1. + d.fy * d.fy;
+  // Principal curvatures and directions: the second fundamental form II = Hessian / sqrt(g) in an
+  // orthonormal basis (e1, e2) of the tangent plane (Gram-Schmidt on the graph's tangents
+  // t1 = u + fx n, t2 = v + fy n; first fundamental form E, F, G), a symmetric matrix [a b; b c].
+  // Its eigenvalues are (a + c)/2 +- sqrt(((a - c)/2)^2 + b^2): no cancellation near umbilics,
+  // unlike H +- sqrt(H^2 - K_G). (a + c)/2 is H.
+  const double E = 1. + d.fx * d.fx, F = d.fx * d.fy;
   const double L = d.fxx / sg, M = d.fxy / sg, N = d.fyy / sg;
-  // (II - k1 I) a = 0: take the larger of the two rows' orthogonal vectors.
-  const double r0a = L - ci.k1 * E, r0b = M - ci.k1 * F;
-  const double r1a = M - ci.k1 * F, r1b = N - ci.k1 * G;
-  double ax, ay;
-  if(r0a * r0a + r0b * r0b >= r1a * r1a + r1b * r1b) { ax = -r0b; ay = r0a; }
-  else                                                { ax = -r1b; ay = r1a; }
-  if(ax * ax + ay * ay <= 1e-300) { ax = 1.; ay = 0.; } // umbilic: any direction is principal
-  Eigen::Vector3d t = ax * (u + d.fx * n) + ay * (v + d.fy * n);
-  ci.d1 = t.normalized();
+  const double a = L / E;
+  const double b = (M - L * F / E) / sg;
+  const double c = (E / g) * (L * F * F / (E * E) - 2. * M * F / E + N);
+  const double disc = std::sqrt(0.25 * (a - c) * (a - c) + b * b);
+  ci.k1 = ci.mean + disc;
+  ci.k2 = ci.mean - disc;
+  const Eigen::Vector3d t1 = u + d.fx * n, t2 = v + d.fy * n;
+  const Eigen::Vector3d e1 = t1 / std::sqrt(E);
+  const Eigen::Vector3d e2 = (t2 - (F / E) * t1) * std::sqrt(E / g);
+  const double phi = 0.5 * std::atan2(2. * b, a - c); // eigenvector of the larger eigenvalue (0 at umbilics)
+  ci.d1 = (std::cos(phi) * e1 + std::sin(phi) * e2).normalized();
   ci.d2 = ci.normal.cross(ci.d1).normalized();
   return ci;
 }
