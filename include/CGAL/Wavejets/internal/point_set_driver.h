@@ -246,6 +246,11 @@ Driver_run fit_each_point(const Input& input, const Driver_settings& settings,
     return true;
   });
   progress.join();
+  // Under Parallel_tag the callback runs on its own thread: a `false` it returned after the
+  // workers' last check still interrupts (nothing is written). Sequential_tag's interrupted()
+  // would call the callback once more; there every `false` was already seen by the loop.
+  if constexpr(!std::is_same<ConcurrencyTag, CGAL::Sequential_tag>::value)
+    if(progress.interrupted()) interrupted = true;
 
   Processing_report& r = run.report;
   r.interrupted = interrupted;
