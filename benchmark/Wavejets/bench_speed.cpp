@@ -246,7 +246,8 @@ static double time_wavejet_enhance(Points& points, std::size_t order, unsigned i
 }
 
 // The fitting core alone: neighborhoods gathered first (not timed), then Fitter::fit on each.
-static double time_fitter(const Points& points, std::size_t m, std::size_t order, unsigned int k)
+static double time_fitter(const Points& points, std::size_t m, std::size_t order, unsigned int k,
+                          std::size_t corrections = 2)
 {
   m = (std::min)(m, points.size());
   std::vector<WI::Neighbor_query::Point> pts;
@@ -266,7 +267,8 @@ static double time_fitter(const Points& points, std::size_t m, std::size_t order
     offsets.push_back(Eigen::Vector3d::Zero());
     for(std::size_t j : nb) offsets.push_back(Eigen::Vector3d(pts[j].x(), pts[j].y(), pts[j].z()) - p);
   }
-  const WI::Driver_settings settings = WI::read_driver_settings(k, CGAL::parameters::default_values(), order, "bench");
+  WI::Driver_settings settings = WI::read_driver_settings(k, CGAL::parameters::default_values(), order, "bench");
+  settings.fitting.correction_iterations = corrections;
   WI::Fitter fitter;
   WI::Fit_result fit;
   double sum = 0.;
@@ -354,7 +356,41 @@ static std::string fmt(double v, int prec)
   return s.str();
 }
 
-static void run_speed(const Options& o, std::vector<Row>& rows, std::vector<std::string>& notes)
+/// The speed targets of the benchmark's issue, filled in by the runs (negative: not measured).
+struct Targets
+{
+  double ratio_k6 = -1., ratio_k2 = -1.;       // CGAL us/point over Wavejets us/point, Sequential_tag
+  double fit_k2 = -1., fit_k2_single = -1.;    // us per fit, K 2, k 100
+  double enhance_600k = -1.;                   // s, wavejet_enhance_positions K 6 k 96, N = 600000, all threads
+  double thread_speedup_min = -1.;             // smallest 2-thread speed-up of the fitting functions
+  int threads = 0;
+};
+
+static std::string targets_table(const Targets& t)
+{
+  std::ostringstream s;
+  auto row = [&](const std::string& what, const std::string& target, double value, int prec, const std::string& unit,
+                 bool met) {
+    s << "| " << what << " | " << target << " | "
+      << (value < 0 ? std::string("not run") : fmt(value, prec) + unit) << " | "
+      << (value < 0 ? "-" : (met ? "met" : "**not met**")) << " |\n";
+  };
+  s << "| target | wanted | measured | |\n|---|---|---:|---|\n";
+  row("wavejet_estimate_normals K 6, k 96 vs jet_estimate_normals degree 6 (seq)", ">= 15x", t.ratio_k6, 1, "x",
+      t.ratio_k6 >= 15.);
+  row("wavejet_estimate_normals K 2, k 18 vs jet_estimate_normals degree 2 (seq)", ">= 2x", t.ratio_k2, 1, "x",
+      t.ratio_k2 >= 2.);
+  row("Fitter::fit, K 2, k 100, default (2 re-fits), per point per thread", "<= 2 us", t.fit_k2, 2, " us", t.fit_k2 <= 2.);
+  row("Fitter::fit, K 2, k 100, one solve (no re-fit), per point per thread", "<= 2 us", t.fit_k2_single, 2, " us",
+      t.fit_k2_single <= 2.);
+  row("wavejet_enhance_positions K 6, k 96, N = 600000, end to end (" + std::to_string(t.threads) + " threads)",
+      "<= 15 s", t.enhance_600k, 1, " s", t.enhance_600k <= 15.);
+  row("2 threads vs 1, smallest speed-up of wavejet_estimate_normals / wavejet_enhance_positions (N = 600000)",
+      ">= 1.8x", t.thread_speedup_min, 2, "x", t.thread_speedup_min >= 1.8);
+  return s.str();
+}
+
+static void run_speed(const Options& o, std::vector<Row>& rows, std::vector<std::string>& notes, Targets& targets)
 {
   const int T = max_threads();
   CGAL::Real_timer ts;
@@ -386,9 +422,15 @@ static void run_speed(const Options& o, std::vector<Row>& rows, std::vector<std:
   {
     const std::size_t m = (std::min<std::size_t>)(input.size(), 20000);
     add("Fitter::fit only, K 2, k 100 (1 thread)", "seq", 1, input.size(), time_fitter(input, m, 2, 100));
+    targets.fit_k2 = rows.back().us();
+    add("Fitter::fit only, K 2, k 100, no re-fit (1 thread)", "seq", 1, input.size(),
+        time_fitter(input, m, 2, 100, 0));
+    targets.fit_k2_single = rows.back().us();
     add("Fitter::fit only, K 6, k 96 (1 thread)", "seq", 1, input.size(), time_fitter(input, m, 6, 96));
     notes.push_back("`Fitter::fit only`: the fitting core on " + std::to_string(m) +
-                    " pre-gathered neighborhoods (k-NN not timed), one thread, scaled to us/point.");
+                    " pre-gathered neighborhoods (k-NN not timed), one thread, scaled to us/point; default "
+                    "options (PCA frame, least squares, 2 tangent-plane re-fits: 3 solves), or `no re-fit` "
+                    "(correction_iterations 0: PCA and one solve).");
   }
 
   // Normals: CGAL jets against Wavejets
@@ -411,8 +453,11 @@ static void run_speed(const Options& o, std::vector<Row>& rows, std::vector<std:
       notes.push_back("CGAL degree 6 / k 96 ran on a strided subset of " + std::to_string(cgal_points.size()) +
                       " of the N points (same surface, lower density; cost per point does not depend on density): "
                       "its ratio compares us/point.");
+    const double cgal_seq_us = rows[rows.size() - (rows.back().mode == "par" ? 2 : 1)].us();
     Points seq = input;
     add(wname, "seq", 1, input.size(), time_wavejet_normals<CGAL::Sequential_tag>(seq, d, k), cname);
+    if(d == 2) targets.ratio_k2 = cgal_seq_us / rows.back().us();
+    if(d == 6) targets.ratio_k6 = cgal_seq_us / rows.back().us();
 #ifdef CGAL_LINKED_WITH_TBB
     Points par = input;
     add(wname, "par", T, input.size(), time_wavejet_normals<CGAL::Parallel_tag>(par, d, k), cname);
@@ -531,7 +576,7 @@ static bool run_child(const Options& o, const std::string& fn, std::size_t n, st
   return true;
 }
 
-static std::string run_scaling(const Options& o, std::vector<std::string>& notes)
+static std::string run_scaling(const Options& o, std::vector<std::string>& notes, Targets& targets)
 {
   const int T = max_threads();
   std::vector<Scaling_row> rows;
@@ -549,8 +594,9 @@ static std::string run_scaling(const Options& o, std::vector<std::string>& notes
     for(std::size_t n : ns)
     {
       const bool enh = std::string(fn) == "enhance";
-      if(run_child(o, fn, n, enh ? 6 : 2, enh ? 96 : 18, T, r))
-        s << "| " << (enh ? "wavejet_enhance_positions" : "wavejet_estimate_normals") << " | " << r.order << " | "
+      if(!run_child(o, fn, n, enh ? 6 : 2, enh ? 96 : 18, T, r)) continue;
+      if(enh && n == 600000) targets.enhance_600k = r.seconds;
+      s << "| " << (enh ? "wavejet_enhance_positions" : "wavejet_estimate_normals") << " | " << r.order << " | "
           << r.k << " | " << n << " | " << fmt(r.seconds, 2) << " | " << fmt(1e6 * r.seconds / n, 2) << " | "
           << fmt(r.rss_mb, 0) << " | " << fmt(r.rss_mb * 1048576. / n, 0) << " |\n";
     }
@@ -580,6 +626,8 @@ static std::string run_scaling(const Options& o, std::vector<std::string>& notes
       if(run_child(o, fn, nt, K, k, t, r))
       {
         if(t == 1) t1 = r.seconds;
+        if(t == 2 && f != "knn" && (targets.thread_speedup_min < 0 || t1 / r.seconds < targets.thread_speedup_min))
+          targets.thread_speedup_min = t1 / r.seconds;
         s << "| " << (f == "knn" ? "kNN only" : f == "normals" ? "wavejet_estimate_normals" : "wavejet_enhance_positions")
           << " | " << (f == "knn" ? std::string("-") : std::to_string(K)) << " | " << k << " | " << t << " | "
           << fmt(r.seconds, 2) << " | " << fmt(t1 / r.seconds, 2) << "x |\n";
@@ -602,15 +650,17 @@ int main(int argc, char** argv)
 
   std::vector<Row> rows;
   std::vector<std::string> notes;
+  Targets targets;
+  targets.threads = max_threads();
   std::string speed, scaling;
   CGAL::Real_timer total;
   total.start();
   if(o.mode == "speed" || o.mode == "all")
   {
-    run_speed(o, rows, notes);
+    run_speed(o, rows, notes, targets);
     speed = speed_table(rows);
   }
-  if(o.mode == "scaling" || o.mode == "all") scaling = run_scaling(o, notes);
+  if(o.mode == "scaling" || o.mode == "all") scaling = run_scaling(o, notes, targets);
   total.stop();
 
   std::ostringstream md;
@@ -629,6 +679,7 @@ int main(int argc, char** argv)
      << "* Input: N = " << o.n << " points sampled uniformly on `data/bunny00.off` (CGAL::Random_points_in_triangle_mesh_3, "
      << "CGAL::Random seed " << o.seed << ")\n"
      << "* Total benchmark time: " << fmt(total.time(), 1) << " s\n\n";
+  md << "## Targets\n\n" << targets_table(targets) << "\n";
   if(!speed.empty()) md << "## Speed (us per point; `seq` = Sequential_tag, `par` = Parallel_tag)\n\n" << speed << "\n";
   if(!scaling.empty()) md << "## Scaling\n\n" << scaling << "\n";
   if(!notes.empty())
