@@ -44,8 +44,10 @@ orientation to PCA). Every new normal is computed from the original input before
 \param gain complex gain alpha_{-1} (a real number converts); finite, |gain| <= 1e100 (a larger gain
        overflows the tilt and gives non-finite normals: it is rejected).
 \param np the named parameters of `wavejet_estimate_normals()` except `orient_with_input_normals` (the
-       input normals always orient the output; `normal_map` is required and read-write), with a different
-       default for `order`, plus `evaluation_radius`:
+       input normals always orient the output; `normal_map` is required and read-write), with different
+       defaults for `order` and `tangent_plane_order` (0: the re-fits of the tangent-plane search are
+       full-order fits, since the filter is defined over the full-order Wavejet's tangent plane), plus
+       `evaluation_radius`:
 
 \cgalNamedParamsBegin
   \cgalParamNBegin{Wavejets::parameters::order}

@@ -45,7 +45,9 @@ points is reported.
 \param gain the gain alpha_0: finite, |gain| <= 1e100 (a larger gain overflows the motion to
        infinity or NaN; it is rejected rather than producing non-finite points when the clamp is off).
 \param np the named parameters of `wavejet_estimate_normals()` (`normal_map` optional here: when
-       given it orients the frames, which does not change the result), plus:
+       given it orients the frames, which does not change the result), with the default 0 for
+       `tangent_plane_order` (the re-fits of the tangent-plane search are full-order fits: the filter is
+       defined over the full-order Wavejet's tangent plane), plus:
 
 \cgalNamedParamsBegin
   \cgalParamNBegin{Wavejets::parameters::order}

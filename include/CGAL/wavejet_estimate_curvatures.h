@@ -35,8 +35,10 @@ otherwise the PCA normal's sign is arbitrary, so the signs of H, k1, k2 are too 
 
 \param points input points (not modified).
 \param k number of neighbors, as in `wavejet_estimate_normals()`.
-\param np named parameters: all those of `wavejet_estimate_normals()` (except `orient_with_input_normals`:
-       a given normal map always orients), plus the output maps below (at least one is required) and:
+\param np named parameters: all those of `wavejet_estimate_normals()` except `orient_with_input_normals` (a
+       given normal map always orients), with the default 0 for `tangent_plane_order` (and with the default
+       `curvature_frame` no tangent-plane search is done at all), plus the output maps below (at least one
+       is required) and:
 
 \cgalNamedParamsBegin
   \cgalParamNBegin{Wavejets::parameters::mean_curvature_map}

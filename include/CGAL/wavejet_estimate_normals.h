@@ -91,6 +91,16 @@ normal read from `normal_map`.
     \cgalParamType{`std::size_t`}
     \cgalParamDefault{2}
   \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::tangent_plane_order}
+    \cgalParamDescription{order of the fits that find the tangent plane (the first fit and the re-fits of
+                          the correction); then one fit of order `order` is done in that plane, and the
+                          output normal is that of this full-order Wavejet at the point (its residual tilt
+                          included). A value >= `order`, or 0, makes every re-fit a full-order fit (the
+                          default of the other functions, whose filters are defined over the tangent plane
+                          of the full-order Wavejet): about three times slower at `order(6)`}
+    \cgalParamType{`std::size_t`}
+    \cgalParamDefault{2}
+  \cgalParamNEnd
   \cgalParamNBegin{Wavejets::parameters::robust_iterations}
     \cgalParamDescription{Tukey IRLS passes per fit, for noisy data with outliers (0: plain least squares)}
     \cgalParamType{`std::size_t`}
@@ -137,7 +147,9 @@ Wavejets::Processing_report wavejet_estimate_normals(PointRange& points, unsigne
   const char* fn = "wavejet_estimate_normals";
   require(has_normal_map(points, np), fn, "the point set has no normal map (call add_normal_map() first)");
 
-  const Driver_settings settings = read_driver_settings(k, np, 2, fn);
+  // Only the normal is written, and it is the full-order surface's: the tangent plane is found
+  // with order-2 fits (one full-order solve per point instead of three), unless asked otherwise.
+  const Driver_settings settings = read_driver_settings(k, np, 2, fn, 2);
   const bool orient = parameters::choose_parameter(
     parameters::get_parameter(np, Wavejets::internal_np::orient_with_input_normals), false);
   const Input input(points, np,

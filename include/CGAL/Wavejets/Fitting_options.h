@@ -62,7 +62,7 @@ enum class Curvature_frame
 /// How a normal passed to `Wavejet_fitting::operator()` is used.
 enum class Normal_use
 {
-  ORIENT,    ///< the frame comes from PCA; the normal only orients it (at most 90 degrees from the frame normal)
+  ORIENT,    ///< the frame comes from PCA; the normal only orients it (at most 90 degrees from the frame normal, also after the tangent-plane correction, which never takes a frame pointing away from it)
   SEED_FRAME ///< the first fit is done in the plane orthogonal to the normal (which also orients it)
 };
 
@@ -79,6 +79,14 @@ struct Fitting_options
   std::size_t minimum_order = 2;
   /// Maximum number of re-fits in the corrected tangent plane (0 switches the correction off).
   std::size_t correction_iterations = 2;
+  /// Order of the fits of the tangent-plane search (the first fit and the re-fits of the
+  /// correction). 0, or a value >= the fit order: the fit order itself (each re-fit is a full fit).
+  /// A lower order, e.g. 2, makes the search cheap: the plane is found with fits of that order, then
+  /// one fit of the full order is done in it; its residual tilt f_{1,+-1} is kept (the normal is that
+  /// of the full-order surface, see `Wavejet_form::normal_direction()`). With
+  /// `Curvature_frame::INITIAL_FRAME`, the full-order fit in the initial frame is also done, for the
+  /// curvatures. The point-set functions use 2.
+  std::size_t tangent_plane_order = 0;
   /// Number of iteratively reweighted least-squares passes (Tukey biweight; 0 = plain least squares).
   std::size_t robust_iterations = 0;
   /// Neighborhood radius Rf used to rescale the coordinates; 0 means the distance from the query

@@ -31,6 +31,7 @@ namespace Wavejets {
   X(maximum_displacement)        /* clamp of the position filter; default Rf/2, inf: off        */ \
   X(neighbors_per_coefficient)   /* beta of the adaptive order; default 1.1                     */ \
   X(correction_iterations)       /* tangent-plane re-fits; default 2                            */ \
+  X(tangent_plane_order)         /* order of the tangent-plane search fits; default 2           */ \
   X(robust_iterations)           /* Tukey IRLS passes; default 0                                */ \
   X(minimum_order)               /* lowest order before the fit fails; default 2                */ \
   X(curvature_frame)             /* Wavejets::Curvature_frame                                   */ \

@@ -117,42 +117,45 @@ public:
       return fail(out, Fit_status::DEGENERATE_NEIGHBORHOOD);
     out.initial_frame = frame;
 
-    // First fit, lowering the order while the system is rank-deficient.
-    bool solved = false;
-    for(; order >= min_order; --order)
+    // The tangent-plane search runs at the fit order, or at the lower tangent_plane_order: then
+    // one fit at the full order follows, in the plane found (and, for the curvature of
+    // INITIAL_FRAME, one in the initial frame).
+    const std::size_t search_order =
+      options.tangent_plane_order > 0 ? (std::min)(options.tangent_plane_order, order) : order;
+    const bool low_order_search = search_order < order && options.correction_iterations > 0 &&
+                                  fit_in_frame(L, search_order, frame, options.robust_iterations, first_);
+    Height_derivatives first_derivatives;
+    if(low_order_search)
     {
-      if(fit_in_frame(L, order, frame, options.robust_iterations, first_))
-      { solved = true; break; }
+      if(options.curvature_frame == Curvature_frame::INITIAL_FRAME)
+      {
+        if(!fit_lowering_order(L, order, min_order, frame, options.robust_iterations, trial_))
+          return fail(out, Fit_status::DEGENERATE_NEIGHBORHOOD);
+        first_derivatives = height_derivatives(trial_.data(), order, inv_radius);
+      }
+      out.initial_tilt = tilt(first_.data(), search_order);
+      const Frame_search search = search_tangent_frame(L, search_order, frame, options, hint_normal);
+      if(!fit_lowering_order(L, order, min_order, search.frame, options.robust_iterations, best_))
+        return fail(out, Fit_status::DEGENERATE_NEIGHBORHOOD);
+      out.frame = search.frame;
+      out.corrections = search.corrections;
+      out.final_tilt = tilt(best_.data(), order);
+      out.condition_number = condition_;
     }
-    if(!solved)
-      return fail(out, Fit_status::DEGENERATE_NEIGHBORHOOD);
+    else
+    {
+      // First fit, lowering the order while the system is rank-deficient, then the search.
+      if(!fit_lowering_order(L, order, min_order, frame, options.robust_iterations, first_))
+        return fail(out, Fit_status::DEGENERATE_NEIGHBORHOOD);
+      first_derivatives = height_derivatives(first_.data(), order, inv_radius);
+      out.initial_tilt = tilt(first_.data(), order);
+      const Frame_search search = search_tangent_frame(L, order, frame, options, hint_normal);
+      out.frame = search.frame;
+      out.corrections = search.corrections;
+      out.final_tilt = search.tilt;
+      out.condition_number = search.condition;
+    }
     out.order = order;
-    const std::size_t B = number_of_coefficients(order);
-    const Height_derivatives first_derivatives = height_derivatives(first_.data(), order, inv_radius);
-    out.initial_tilt = tilt(first_.data(), order);
-    best_.assign(first_.begin(), first_.begin() + B);
-    double best_tilt = out.initial_tilt;
-    Frame best_frame = frame;
-    double best_condition = condition_;
-
-    // Tangent-plane correction: re-fit in the plane orthogonal to the fitted normal, keep the best.
-    for(std::size_t it = 0; it < options.correction_iterations && best_tilt > 0.; ++it)
-    {
-      const Frame corrected = tilted_frame(best_frame, best_.data(), order);
-      if(!fit_in_frame(L, order, corrected, options.robust_iterations, trial_))
-        break;
-      const double t = tilt(trial_.data(), order);
-      if(!(t < best_tilt))
-        break;
-      best_.assign(trial_.begin(), trial_.begin() + B);
-      best_tilt = t;
-      best_frame = corrected;
-      best_condition = condition_;
-      ++out.corrections;
-    }
-    out.frame = best_frame;
-    out.final_tilt = best_tilt;
-    out.condition_number = best_condition;
     if(options.curvature_frame == Curvature_frame::INITIAL_FRAME)
     {
       out.curvature_derivatives = first_derivatives;
@@ -161,7 +164,7 @@ public:
     else
     {
       out.curvature_derivatives = height_derivatives(best_.data(), order, inv_radius);
-      out.curvature_frame = best_frame;
+      out.curvature_frame = out.frame;
     }
     out.status = Fit_status::SUCCESS;
     return out.status;
@@ -177,6 +180,58 @@ private:
     out.status = s;
     out.order = 0;
     return s;
+  }
+
+  // Fits at `order` in `frame`, lowering `order` (not below min_order) while the system is
+  // rank-deficient. Returns false if no order works.
+  bool fit_lowering_order(std::size_t L, std::size_t& order, std::size_t min_order, const Frame& frame,
+                          std::size_t robust_iterations, std::vector<double>& c)
+  {
+    for(; order >= min_order && order >= 1; --order)
+      if(fit_in_frame(L, order, frame, robust_iterations, c))
+        return true;
+    return false;
+  }
+
+  struct Frame_search
+  {
+    Frame frame;
+    double tilt = 0., condition = 0.;
+    std::size_t corrections = 0;
+  };
+
+  // Tangent-plane correction (WAVEJETS_MATH.md §2.5) from the fit first_ of order `order` in
+  // `frame`: re-fit in the plane orthogonal to the fitted normal, at most
+  // options.correction_iterations times, keep the fit with the smallest |f_{1,1}| (into best_),
+  // stop as soon as a re-fit does not lower it. A corrected frame whose normal would point away
+  // from the given normal `hint` (possible across sharp edges) is not taken: the frame keeps the
+  // orientation the normal gave it.
+  Frame_search search_tangent_frame(std::size_t L, std::size_t order, const Frame& frame, const Fitting_options& options,
+                                    const Eigen::Vector3d* hint)
+  {
+    const std::size_t B = number_of_coefficients(order);
+    Frame_search best;
+    best_.assign(first_.begin(), first_.begin() + B);
+    best.tilt = tilt(first_.data(), order);
+    best.frame = frame;
+    best.condition = condition_;
+    for(std::size_t it = 0; it < options.correction_iterations && best.tilt > 0.; ++it)
+    {
+      const Frame corrected = tilted_frame(best.frame, best_.data(), order);
+      if(hint && !(corrected.n.dot(*hint) > 0.))
+        break;
+      if(!fit_in_frame(L, order, corrected, options.robust_iterations, trial_))
+        break;
+      const double t = tilt(trial_.data(), order);
+      if(!(t < best.tilt))
+        break;
+      best_.assign(trial_.begin(), trial_.begin() + B);
+      best.tilt = t;
+      best.frame = corrected;
+      best.condition = condition_;
+      ++best.corrections;
+    }
+    return best;
   }
 
   static double tilt(const double* c, std::size_t order)

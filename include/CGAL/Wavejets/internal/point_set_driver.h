@@ -85,9 +85,11 @@ struct Driver_settings
   bool restrict_to_consistent_normals = false;
 };
 
-/// Reads the settings shared by all functions. `default_order` differs per function.
+/// Reads the settings shared by all functions. `default_order` and `default_tangent_plane_order`
+/// (0: the order itself) differ per function.
 template <class NP>
-Driver_settings read_driver_settings(unsigned int k, const NP& np, std::size_t default_order, const char* fn)
+Driver_settings read_driver_settings(unsigned int k, const NP& np, std::size_t default_order, const char* fn,
+                                     std::size_t default_tangent_plane_order = 0)
 {
   using CGAL::parameters::choose_parameter;
   using CGAL::parameters::get_parameter;
@@ -104,6 +106,8 @@ Driver_settings read_driver_settings(unsigned int k, const NP& np, std::size_t d
   s.fitting.minimum_order = choose_parameter(get_parameter(np, Wavejets::internal_np::minimum_order), std::size_t(2));
   s.fitting.correction_iterations =
     choose_parameter(get_parameter(np, Wavejets::internal_np::correction_iterations), std::size_t(2));
+  s.fitting.tangent_plane_order =
+    choose_parameter(get_parameter(np, Wavejets::internal_np::tangent_plane_order), default_tangent_plane_order);
   s.fitting.robust_iterations = choose_parameter(get_parameter(np, Wavejets::internal_np::robust_iterations), std::size_t(0));
   s.fitting.curvature_frame =
     choose_parameter(get_parameter(np, Wavejets::internal_np::curvature_frame), Curvature_frame::INITIAL_FRAME);
