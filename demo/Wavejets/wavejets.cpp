@@ -487,7 +487,7 @@ Input read_input(const std::string& path)
 
 double average_spacing(const Point_set& points)
 {
-  if(points.size() < 2) return 0.;
+  if(points.size() < 3) return 0.; // CGAL::compute_average_spacing requires k >= 2 neighbors
   const unsigned int k = unsigned(std::min<std::size_t>(6, points.size() - 1));
   return CGAL::compute_average_spacing<Concurrency_tag>(points, k, CGAL::parameters::point_map(points.point_map()));
 }
@@ -513,6 +513,9 @@ Neighborhood choose_neighborhood(const Options& o, const Point_set& points, cons
     n.k = o.k;
     n.description = std::to_string(n.k) + " nearest neighbors";
   } else {
+    if(points.size() < 3)
+      throw File_error(path + ": " + std::to_string(points.size()) + " points: too few to choose a neighborhood radius "
+                       "from the average spacing (give --k or --radius)");
     const double spacing = average_spacing(points);
     if(!(spacing > 0)) throw File_error(path + ": every point coincides with its nearest neighbors: no neighborhood radius can be "
                                        "chosen from the average spacing (give --k or --radius)");
