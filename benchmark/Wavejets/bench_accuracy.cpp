@@ -207,6 +207,12 @@ static std::vector<Estimate> run_estimator(Estimator e, const Dataset& d, const 
     if(e == WJ_FIX) { fo.neighbors_per_coefficient = 1.0; fo.minimum_order = K; }
     if(seed_frame) fo.normal_use = CGAL::Wavejets::Normal_use::SEED_FRAME;
     WJ_fitting wj(fo);
+    // The normal as wavejet_estimate_normals computes it: tangent plane found at order 2, then one
+    // order-K fit (its curvature frame is irrelevant for the normal: TANGENT_FRAME skips a solve).
+    CGAL::Wavejets::Fitting_options fo_normals = fo;
+    fo_normals.tangent_plane_order = 2;
+    fo_normals.curvature_frame = CGAL::Wavejets::Curvature_frame::TANGENT_FRAME;
+    WJ_fitting wj_normals(fo_normals);
     Monge_fitting monge;
     for(std::size_t i = b; i < std::min(b + 32, d.eval.size()); ++i)
     {
@@ -253,7 +259,9 @@ static std::vector<Estimate> run_estimator(Estimator e, const Dataset& d, const 
         r.K = f.gaussian_curvature();
         r.k1 = f.principal_curvatures(0);
         r.k2 = f.principal_curvatures(1);
-        const Vector n = f.normal_direction();
+        const WJ_fitting::Wavejet_form fn = wj_normals(pts.begin(), pts.end(), K, Vector(hint.x(), hint.y(), hint.z()));
+        if(!fn.is_valid()) continue;
+        const Vector n = fn.normal_direction();
         r.n = WB::V3(n.x(), n.y(), n.z());
         r.ok = true;
         // TANGENT_FRAME curvature (what curvature_frame(TANGENT_FRAME) computes): the graph formulas on the
@@ -1219,7 +1227,8 @@ int main(int argc, char** argv)
      << "| name | what |\n| --- | --- |\n"
      << "| WJ | `CGAL::Wavejet_fitting` with the defaults of the point-set functions: adaptive order (neighbors_per_coefficient 1.1),"
         " 2 tangent-plane re-fits, curvature from the first fit (INITIAL_FRAME, the PCA frame = CGAL's least-squares problem),"
-        " normal of the corrected fit |\n"
+        " normal as `wavejet_estimate_normals` computes it (tangent plane found with order-2 fits, `tangent_plane_order(2)`,"
+        " then the normal of one order-K fit in it) |\n"
      << "| WJ-R3 | WJ + `robust_iterations(3)` (Tukey IRLS, 3 passes) |\n"
      << "| WJ-T | WJ + `curvature_frame(TANGENT_FRAME)` (curvature from the corrected tangent-frame fit; normals as WJ) |\n"
      << "| WJ-fix | adaptive order off: `neighbors_per_coefficient(1.0).minimum_order(K)`: a point whose neighborhood is"

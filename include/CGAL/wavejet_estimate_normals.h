@@ -149,7 +149,10 @@ Wavejets::Processing_report wavejet_estimate_normals(PointRange& points, unsigne
 
   // Only the normal is written, and it is the full-order surface's: the tangent plane is found
   // with order-2 fits (one full-order solve per point instead of three), unless asked otherwise.
-  const Driver_settings settings = read_driver_settings(k, np, 2, fn, 2);
+  Driver_settings settings = read_driver_settings(k, np, 2, fn, 2);
+  // No curvature is read: the full-order fit in the initial frame, which only serves
+  // Curvature_frame::INITIAL_FRAME curvatures, is not needed.
+  settings.fitting.curvature_frame = Wavejets::Curvature_frame::TANGENT_FRAME;
   const bool orient = parameters::choose_parameter(
     parameters::get_parameter(np, Wavejets::internal_np::orient_with_input_normals), false);
   const Input input(points, np,
