@@ -480,7 +480,8 @@ static void run_speed(const Options& o, std::vector<Row>& rows, std::vector<std:
   if(n_angle)
     notes.push_back("Angle between Wavejet and CGAL jet normals (degrees 2 and 4, same k, unoriented): mean " +
                     fmt(sum_angle_deg / double(n_angle), 3) + " deg, max " + fmt(max_angle_deg, 2) +
-                    " deg (the Wavejet normal is that of the corrected tangent frame, CGAL's that of the first fit).");
+                    " deg (the Wavejet normal is that of the order-K Wavejet fitted in the tangent plane found by order-2 fits, "
+                    "CGAL's that of the jet fitted in the PCA frame).");
 
   // Curvatures and position enhancement
   for(int c : {0, 2})
