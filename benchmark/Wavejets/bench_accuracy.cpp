@@ -1249,7 +1249,7 @@ int main(int argc, char** argv)
         " H RMSE between WJ and CGAL: " << fmt(worst_rel, 2)
      << " (the default curvature is, by design, CGAL's least-squares problem in the same PCA frame, so equality is the"
         " expected outcome, not an improvement). Mean normal angle: WJ <= CGAL in " << clean_n_ok << " / " << clean_total
-     << " configurations (the WJ normal comes from the corrected tangent-plane fit, CGAL's from the first fit).\n";
+     << " configurations (the WJ normal is that of the order-K Wavejet fitted in the tangent plane found by order-2 fits, CGAL's that of the jet fitted in the PCA frame).\n";
   if(clean_h_ok != clean_total) md << "\nConfigurations where WJ's H RMSE is above CGAL's:\n\n" << clean_violations.str();
   md << "\n**Noisy data (sigma = 0.5%), best Wavejet setting <= half of CGAL jets' H RMSE:**\n\n"
      << "Best over order K in {" << orders.front() << ".." << orders.back() << "} and estimator variant, at each radius"
