@@ -55,34 +55,11 @@ inline std::complex<double> complex_coefficient(const double* c, int k, int n)
   return n > 0 ? std::complex<double>(alpha / 2, -beta / 2) : std::complex<double>(alpha / 2, beta / 2);
 }
 
-/// Writes the B = (K+1)(K+2)/2 basis values at (x, y) into row[0..B-1], in the column layout
-/// above, by recurrence: r^k e^{i n theta} = (x^2+y^2) r^{k-2} e^{i n theta} for n <= k-2, and
-/// (x + i y)^k for n = k. No pow, atan2 or sqrt.
-inline void evaluate_basis(double x, double y, std::size_t order, double* row)
-{
-  const double rho = x * x + y * y;
-  double wr = 1., wi = 0.; // (x + i y)^k
-  row[0] = 1.;
-  for(std::size_t k = 1; k <= order; ++k)
-  {
-    const double nr = wr * x - wi * y;
-    wi = wr * y + wi * x;
-    wr = nr;
-    const std::size_t o = order_offset(k);
-    if(k >= 2)
-    {
-      const std::size_t o2 = order_offset(k - 2);
-      for(std::size_t j = 0; j + 1 < k; ++j)
-        row[o + j] = rho * row[o2 + j];
-    }
-    row[o + k - 1] = wr;
-    row[o + k] = wi;
-  }
-}
-
-/// The same basis at L points (x[l], y[l]), column-major: column b of the layout above starts at
-/// A + b * P (P >= L), and rows L..P-1 (padding) are set to zero. Columnwise recurrences, with the
-/// operations of evaluate_basis() (bitwise the same values), vectorizable along the points.
+/// The B = (K+1)(K+2)/2 basis values at L points (x[l], y[l]), in the column layout above, column-major: column b starts at A + b * P (P >= L); rows L..P-1 (padding)
+/// are set to zero. By recurrence along whole columns (vectorizable along the points):
+/// r^k e^{i n theta} = (x^2 + y^2) r^{k-2} e^{i n theta} for n <= k-2, and (x + i y)^k for n = k.
+/// No pow, atan2 or sqrt. (x^2 + y^2 is recomputed per column: measured faster than reading it
+/// from a third array.)
 inline void evaluate_basis_columns(const double* x, const double* y, std::size_t L, std::size_t P,
                                    std::size_t order, double* A)
 {
@@ -102,37 +79,24 @@ inline void evaluate_basis_columns(const double* x, const double* y, std::size_t
         for(std::size_t l = L; l < P; ++l) column[l] = 0.;
       }
     }
-    // (x + i y)^k from (x + i y)^{k-1}: the last two columns of order k-1 (1 and 0 for k = 1).
+    // (x + i y)^k = (x + i y)^{k-1} (x + i y): from the last two columns of order k-1 (for k = 1,
+    // column 0 and zero). Padding rows stay zero (they are zero in those columns; x and y must be
+    // finite there).
     double* re = A + (o + k - 1) * P;
     double* im = A + (o + k) * P;
     if(k == 1)
-      for(std::size_t l = 0; l < P; ++l)
-      {
-        const double wr = A[l], wi = 0.;
-        re[l] = wr * x[l] - wi * y[l];
-        im[l] = wr * y[l] + wi * x[l];
-      }
-    else
     {
-      const double* pre = A + (order_offset(k - 1) + k - 2) * P;
-      const double* pim = A + (order_offset(k - 1) + k - 1) * P;
-      for(std::size_t l = 0; l < P; ++l)
-      {
-        re[l] = pre[l] * x[l] - pim[l] * y[l];
-        im[l] = pre[l] * y[l] + pim[l] * x[l];
-      }
+      for(std::size_t l = 0; l < P; ++l) { re[l] = A[l] * x[l]; im[l] = A[l] * y[l]; }
+      continue;
+    }
+    const double* pre = A + (order_offset(k - 1) + k - 2) * P;
+    const double* pim = A + (order_offset(k - 1) + k - 1) * P;
+    for(std::size_t l = 0; l < P; ++l)
+    {
+      re[l] = pre[l] * x[l] - pim[l] * y[l];
+      im[l] = pre[l] * y[l] + pim[l] * x[l];
     }
   }
-}
-
-/// Height of the Wavejet with real unknowns `c` at (x, y).
-inline double evaluate_height(const double* c, std::size_t order, double x, double y, double* scratch_row)
-{
-  evaluate_basis(x, y, order, scratch_row);
-  double z = 0.;
-  for(std::size_t b = 0; b < number_of_coefficients(order); ++b)
-    z += c[b] * scratch_row[b];
-  return z;
 }
 
 /// Enclosed-area coefficient a_n(s) = sum_{k >= max(|n|, k_min), k = n mod 2} f_{k,n} s^{k+2}/(k+2),

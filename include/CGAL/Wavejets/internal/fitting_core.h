@@ -187,7 +187,7 @@ private:
   bool fit_lowering_order(std::size_t L, std::size_t& order, std::size_t min_order, const Frame& frame,
                           std::size_t robust_iterations, std::vector<double>& c)
   {
-    for(; order >= min_order && order >= 1; --order)
+    for(; order >= min_order; --order) // min_order >= 1: no wrap-around
       if(fit_in_frame(L, order, frame, robust_iterations, c))
         return true;
     return false;
