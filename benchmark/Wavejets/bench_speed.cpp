@@ -446,6 +446,7 @@ static void run_speed(const Options& o, std::vector<Row>& rows, std::vector<std:
     const std::string cname = "CGAL jet_estimate_normals, degree " + std::to_string(d) + ", k " + std::to_string(k);
     const std::string wname = "wavejet_estimate_normals, K " + std::to_string(d) + ", k " + std::to_string(k);
     add(cname, "seq", 1, cgal_points.size(), time_cgal_jet<CGAL::Sequential_tag>(cgal_points, d, k));
+    const double cgal_seq_us = rows.back().us();
 #ifdef CGAL_LINKED_WITH_TBB
     add(cname, "par", T, cgal_points.size(), time_cgal_jet<CGAL::Parallel_tag>(cgal_points, d, k));
 #endif
@@ -453,7 +454,6 @@ static void run_speed(const Options& o, std::vector<Row>& rows, std::vector<std:
       notes.push_back("CGAL degree 6 / k 96 ran on a strided subset of " + std::to_string(cgal_points.size()) +
                       " of the N points (same surface, lower density; cost per point does not depend on density): "
                       "its ratio compares us/point.");
-    const double cgal_seq_us = rows[rows.size() - (rows.back().mode == "par" ? 2 : 1)].us();
     Points seq = input;
     add(wname, "seq", 1, input.size(), time_wavejet_normals<CGAL::Sequential_tag>(seq, d, k), cname);
     if(d == 2) targets.ratio_k2 = cgal_seq_us / rows.back().us();
