@@ -395,7 +395,8 @@ private:
   bool want_condition_ = false;
   double condition_ = 0.;
   std::vector<Eigen::Vector3d> scaled_;
-  std::vector<double> basis_, work_, heights_, xs_, ys_, householder_scratch_, residual_, sorted_, weights_;
+  Aligned_vector basis_, work_, heights_, xs_, ys_, householder_scratch_; // read by the vectorized kernels
+  std::vector<double> residual_, sorted_, weights_;
   std::vector<double> first_, trial_, best_, trial_solution_;
 };
 

@@ -26,6 +26,8 @@
 #include <cmath>
 #include <cstddef>
 #include <cstring>
+#include <new>
+#include <vector>
 
 // x86 with GCC or Clang: the solver is also compiled for AVX (without FMA, so the arithmetic,
 // hence the result, is bitwise the same as the SSE2 code) and for AVX2 with FMA (the compiler fuses
@@ -48,6 +50,29 @@ namespace internal {
 /// A column is taken as dependent on the previous ones when the part of it orthogonal to them
 /// is below this fraction of its norm (numerical rank test of the non-pivoted QR).
 constexpr double rank_tolerance = 1e-10;
+
+/// Allocator of cache-line aligned storage for the solver's scratch: the kernels read and write
+/// 32-byte vectors at multiples of householder_block doubles from the start of a column, which
+/// then never straddle two cache lines (measured: the K = 6 normals were up to 10% slower when
+/// the heap happened to return storage that was only 16-byte aligned).
+template <class T>
+struct Aligned_allocator
+{
+  typedef T value_type;
+  static constexpr std::size_t alignment = 64;
+  Aligned_allocator() = default;
+  template <class U>
+  Aligned_allocator(const Aligned_allocator<U>&) {}
+  T* allocate(std::size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t(alignment))); }
+  void deallocate(T* p, std::size_t) { ::operator delete(p, std::align_val_t(alignment)); }
+  template <class U>
+  bool operator==(const Aligned_allocator<U>&) const { return true; }
+  template <class U>
+  bool operator!=(const Aligned_allocator<U>&) const { return false; }
+};
+
+/// A vector of doubles in cache-line aligned storage.
+typedef std::vector<double, Aligned_allocator<double> > Aligned_vector;
 
 /// Row blocking of the solver: column strides are multiples of it.
 constexpr std::size_t householder_block = 8;

@@ -88,7 +88,7 @@ public:
     {
       if(k == 0 || m_size == 0) return;
       // one more than asked: the query point (or one of its duplicates) comes back too
-      Knn search(m_tree, p, (std::min<std::size_t>)(std::size_t(k) + 1, m_size), 0., true, m_distance);
+      Knn search(m_tree, p, (std::min<std::size_t>)(std::size_t(k) + 1, m_size), 0., true, m_distance, false);
       for(typename Knn::iterator it = search.begin(); it != search.end(); ++it)
         if(it->first != i) scratch.emplace_back(it->second, it->first);
     }
