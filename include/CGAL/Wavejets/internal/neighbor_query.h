@@ -46,6 +46,10 @@ private:
   typedef Search_traits_3<SC> Base_traits;
   typedef Search_traits_adapter<std::size_t, Index_map, Base_traits> Traits;
   typedef Sliding_midpoint<Traits> Splitter;
+  // Points per kd-tree leaf. CGAL's default is 10; 24 measured faster for every k we use
+  // (100k bunny points, one thread: k 96 7.8 -> 7.2 us, k 32 2.75 -> 2.53 us, k 18 1.70 -> 1.53 us
+  // per query) and gives the same neighbors.
+  static constexpr unsigned int bucket_size = 24;
   typedef Distance_adapter<std::size_t, Index_map, Euclidean_distance<Base_traits> > Distance;
   typedef Kd_tree<Traits, Splitter, Tag_true, Tag_true> Tree;
   typedef Orthogonal_k_neighbor_search<Traits, Distance, Splitter, Tree> Knn;
@@ -54,7 +58,7 @@ private:
 public:
   /// `points` must outlive the query; `in_tree[i]` false keeps point i out of every neighborhood.
   Neighbor_query(const std::vector<Point>& points, const std::vector<unsigned char>& in_tree)
-    : m_points(points), m_map(make_property_map(points)), m_traits(m_map), m_tree(Splitter(), m_traits),
+    : m_points(points), m_map(make_property_map(points)), m_traits(m_map), m_tree(Splitter(bucket_size), m_traits),
       m_distance(m_map)
   {
     std::vector<std::size_t> indices;
