@@ -306,15 +306,19 @@ private:
     return r;
   }
 
-  // Builds the system in `frame` (basis_: column-major, column stride padded_rows(L), zero
-  // padding rows) and solves it (with optional IRLS passes) into `c`.
+  // Builds the system [A | h] in `frame` (column-major, column stride padded_rows(L), zero
+  // padding rows) and solves it (with optional IRLS passes) into `c`. Without IRLS the system is
+  // built directly in the solver's scratch work_; IRLS keeps it in system_ for the reweighted passes.
   bool fit_in_frame(std::size_t L, std::size_t order, const Frame& frame, std::size_t robust_iterations,
                     std::vector<double>& c)
   {
     const std::size_t B = number_of_coefficients(order);
     const std::size_t P = padded_rows(L);
-    basis_.resize(P * B);
-    heights_.resize(P);
+    const bool keep_system = robust_iterations > 0;
+    Aligned_vector& system = keep_system ? system_ : work_;
+    system.resize(P * (B + 1));
+    double* A = system.data();
+    double* h = A + B * P;
     xs_.resize(P);
     ys_.resize(P);
     for(std::size_t l = 0; l < L; ++l)
@@ -322,12 +326,12 @@ private:
       const Eigen::Vector3d& d = scaled_[l];
       xs_[l] = d.dot(frame.u);
       ys_[l] = d.dot(frame.v);
-      heights_[l] = d.dot(frame.n);
+      h[l] = d.dot(frame.n);
     }
-    for(std::size_t l = L; l < P; ++l) xs_[l] = ys_[l] = heights_[l] = 0.;
-    evaluate_basis_columns(xs_.data(), ys_.data(), L, P, order, basis_.data());
+    for(std::size_t l = L; l < P; ++l) xs_[l] = ys_[l] = h[l] = 0.;
+    evaluate_basis_columns(xs_.data(), ys_.data(), L, P, order, A);
     c.resize(B);
-    if(!solve_weighted(L, B, nullptr, c))
+    if(keep_system ? !solve_weighted(L, B, nullptr, c) : !solve_work(L, B, c))
       return false;
 
     for(std::size_t it = 0; it < robust_iterations; ++it)
@@ -336,10 +340,10 @@ private:
       residual_.assign(L, 0.);
       for(std::size_t b = 0; b < B; ++b)
       {
-        const double* column = basis_.data() + b * P;
+        const double* column = A + b * P;
         for(std::size_t l = 0; l < L; ++l) residual_[l] += column[l] * c[b];
       }
-      for(std::size_t l = 0; l < L; ++l) residual_[l] = std::abs(heights_[l] - residual_[l]);
+      for(std::size_t l = 0; l < L; ++l) residual_[l] = std::abs(h[l] - residual_[l]);
       sorted_.assign(residual_.begin(), residual_.end());
       std::nth_element(sorted_.begin(), sorted_.begin() + L / 2, sorted_.end());
       const double scale = 1.4826 * sorted_[L / 2];
@@ -359,21 +363,24 @@ private:
     return true;
   }
 
-  // Least squares with rows scaled by sqrt_weights (null: unweighted), on a copy of the system
-  // (basis_ and heights_ are kept for the reweighted passes).
+  // Least squares on a copy of system_ in work_, with rows scaled by sqrt_weights (null: unweighted).
   bool solve_weighted(std::size_t L, std::size_t B, const double* sqrt_weights, std::vector<double>& c)
   {
-    // Column-major [A | b], column stride P, zero padding rows (see least_squares.h).
     const std::size_t P = padded_rows(L);
-    work_.resize(P * (B + 1));
-    std::copy(basis_.begin(), basis_.begin() + P * B, work_.begin());
-    std::copy(heights_.begin(), heights_.begin() + P, work_.begin() + P * B);
+    work_.assign(system_.begin(), system_.begin() + P * (B + 1));
     if(sqrt_weights)
       for(std::size_t b = 0; b <= B; ++b)
       {
         double* column = work_.data() + b * P;
         for(std::size_t l = 0; l < L; ++l) column[l] *= sqrt_weights[l];
       }
+    return solve_work(L, B, c);
+  }
+
+  // Least squares on the system [A | h] in work_ (destroyed: R on return, see least_squares.h).
+  bool solve_work(std::size_t L, std::size_t B, std::vector<double>& c)
+  {
+    const std::size_t P = padded_rows(L);
     householder_scratch_.resize(P);
     c.resize(B);
     if(!householder_least_squares(work_.data(), L, B, householder_scratch_.data(), c.data()))
@@ -395,7 +402,7 @@ private:
   bool want_condition_ = false;
   double condition_ = 0.;
   std::vector<Eigen::Vector3d> scaled_;
-  Aligned_vector basis_, work_, heights_, xs_, ys_, householder_scratch_; // read by the vectorized kernels
+  Aligned_vector system_, work_, xs_, ys_, householder_scratch_; // read by the vectorized kernels
   std::vector<double> residual_, sorted_, weights_;
   std::vector<double> first_, trial_, best_, trial_solution_;
 };
