@@ -381,7 +381,7 @@ private:
   bool solve_work(std::size_t L, std::size_t B, std::vector<double>& c)
   {
     const std::size_t P = padded_rows(L);
-    householder_scratch_.resize(P);
+    householder_scratch_.resize(2 * P);
     c.resize(B);
     if(!householder_least_squares(work_.data(), L, B, householder_scratch_.data(), c.data()))
       return false;

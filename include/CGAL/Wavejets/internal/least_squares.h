@@ -27,6 +27,7 @@
 #include <cstddef>
 #include <cstring>
 #include <new>
+#include <utility>
 #include <vector>
 
 // x86 with GCC or Clang: the solver is also compiled for AVX (without FMA, so the arithmetic,
@@ -154,6 +155,50 @@ CGAL_WAVEJETS_KERNEL_INLINE void householder_updates(const double* v, double* X,
     }
   }
 }
+
+/// x[i] -= s v[i] for rows begin..P-1 (the reflection of column j-1 applied to column j), and, in
+/// the same pass, the start of column j's own Householder vector: vn[i] = x[i] for i >= j, 0 for
+/// the rows of j's block above j; returns the sum of their squares, with the partial sums and
+/// reduction of householder_dots() (the same value as householder_dots<1>(vn, vn, ...)).
+CGAL_WAVEJETS_KERNEL_INLINE double householder_update_and_next(const double* v, double s, double* x, std::size_t begin,
+                                                              std::size_t P, std::size_t j, double* vn)
+{
+  const std::size_t jb = j / householder_block * householder_block;
+  const Double4 zero = {0., 0., 0., 0.};
+  const Double4 sm = zero + s;
+  Double4 lo = zero, hi = zero;
+  for(std::size_t i = begin; i < P; i += householder_block)
+  {
+    Double4 v_lo, v_hi, x_lo, x_hi;
+    load4(v_lo, v + i);
+    load4(v_hi, v + i + 4);
+    load4(x_lo, x + i);
+    load4(x_hi, x + i + 4);
+    x_lo -= sm * v_lo;
+    x_hi -= sm * v_hi;
+    store4(x + i, x_lo);
+    store4(x + i + 4, x_hi);
+    if(i < jb)
+      continue; // rows above j's block: not part of column j's vector
+    if(i == jb && j > jb)
+    {
+      double t[householder_block];
+      store4(t, x_lo);
+      store4(t + 4, x_hi);
+      for(std::size_t r = 0; r < j - jb; ++r) t[r] = 0.;
+      load4(x_lo, t);
+      load4(x_hi, t + 4);
+    }
+    store4(vn + i, x_lo);
+    store4(vn + i + 4, x_hi);
+    lo += x_lo * x_lo;
+    hi += x_hi * x_hi;
+  }
+  double acc[householder_block];
+  store4(acc, lo);
+  store4(acc + 4, hi);
+  return reduce_block(acc);
+}
 #else
 /// w[m] = sum_{i = begin}^{end-1} v[i] x_m[i] for the M columns x_m = X + m * P (begin, end:
 /// multiples of householder_block), with one partial sum per row residue (see reduce_block()).
@@ -179,19 +224,28 @@ CGAL_WAVEJETS_KERNEL_INLINE void householder_updates(const double* v, double* X,
   for(int m = 0; m < M; ++m)
     for(std::size_t i = begin; i < end; ++i) X[m * P + i] -= s[m] * v[i];
 }
+
+/// x[i] -= s v[i] for rows begin..P-1, and column j's Householder vector started in vn (see the
+/// vectorized version); returns its squared norm.
+CGAL_WAVEJETS_KERNEL_INLINE double householder_update_and_next(const double* v, double s, double* x, std::size_t begin,
+                                                              std::size_t P, std::size_t j, double* vn)
+{
+  householder_updates<1>(v, x, P, begin, P, &s);
+  const std::size_t jb = j / householder_block * householder_block;
+  for(std::size_t i = jb; i < j; ++i) vn[i] = 0.;
+  for(std::size_t i = j; i < P; ++i) vn[i] = x[i];
+  double tail2;
+  householder_dots<1>(vn, vn, P, jb, P, &tail2);
+  return tail2;
+}
 #endif
 
-/// Householder vector of column j (rows j.., j0 = the block of row j) into v, zero on rows j0..j-1;
+/// Completes the Householder vector v of column j from the squared norm `tail2` of its rows j..:
 /// `beta` = 2 / v.v and `alpha` = -sign(x_j)|x| (the diagonal entry of R). Returns false if the
 /// part of the column orthogonal to the previous ones is below rank_tolerance of its norm.
-CGAL_WAVEJETS_KERNEL_INLINE bool householder_vector(const double* A, std::size_t P, std::size_t j, std::size_t j0,
-                                                   double* v, double& beta, double& alpha)
+CGAL_WAVEJETS_KERNEL_INLINE bool householder_finish(const double* a, std::size_t j, double tail2, double* v,
+                                                   double& beta, double& alpha)
 {
-  const double* a = A + j * P;
-  for(std::size_t i = j0; i < j; ++i) v[i] = 0.;
-  for(std::size_t i = j; i < P; ++i) v[i] = a[i];
-  double tail2;
-  householder_dots<1>(v, v, P, j0, P, &tail2);
   double full2 = tail2;
   for(std::size_t i = 0; i < j; ++i) full2 += a[i] * a[i];
   const double tail = std::sqrt(tail2);
@@ -205,37 +259,79 @@ CGAL_WAVEJETS_KERNEL_INLINE bool householder_vector(const double* A, std::size_t
   return true;
 }
 
-/// Kernel of householder_least_squares(). Column j's reflection is applied to the trailing columns
-/// (four at a time); every loop runs over whole blocks from the block that holds row j (the zeros
-/// of the Householder vector above row j leave those rows unchanged).
-CGAL_WAVEJETS_KERNEL_INLINE bool householder_kernel(double* A, std::size_t rows, std::size_t cols, double* v,
+/// Householder vector of column j (rows j.., j0 = the block of row j) into v, zero on rows j0..j-1
+/// (see householder_finish()).
+CGAL_WAVEJETS_KERNEL_INLINE bool householder_vector(const double* A, std::size_t P, std::size_t j, std::size_t j0,
+                                                   double* v, double& beta, double& alpha)
+{
+  const double* a = A + j * P;
+  for(std::size_t i = j0; i < j; ++i) v[i] = 0.;
+  for(std::size_t i = j; i < P; ++i) v[i] = a[i];
+  double tail2;
+  householder_dots<1>(v, v, P, j0, P, &tail2);
+  return householder_finish(a, j, tail2, v, beta, alpha);
+}
+
+/// Applies the reflection (v, beta) of a column whose block starts at row j0 to the columns
+/// first..last of A, four at a time.
+CGAL_WAVEJETS_KERNEL_INLINE void householder_reflect(const double* v, double beta, double* A, std::size_t P,
+                                                    std::size_t j0, std::size_t first, std::size_t last)
+{
+  std::size_t l = first;
+  double s[4] = {0., 0., 0., 0.};
+  for(; l + 4 <= last + 1; l += 4)
+  {
+    householder_dots<4>(v, A + l * P, P, j0, P, s);
+    for(int m = 0; m < 4; ++m) s[m] *= beta;
+    householder_updates<4>(v, A + l * P, P, j0, P, s);
+  }
+  for(; l <= last; ++l)
+  {
+    householder_dots<1>(v, A + l * P, P, j0, P, s);
+    s[0] *= beta;
+    householder_updates<1>(v, A + l * P, P, j0, P, s);
+  }
+}
+
+/// Kernel of householder_least_squares(). Column j's reflection is applied to the trailing columns;
+/// every loop runs over whole blocks from the block that holds row j (the zeros of the Householder
+/// vector above row j leave those rows unchanged). Column j+1 goes first, alone, and the same pass
+/// starts its own Householder vector (see householder_update_and_next()): that vector is what the
+/// next step waits for, and the processor builds it while it updates the other columns. Every
+/// column sees the same operations in the same order as with one pass per column: the result does
+/// not depend on this schedule.
+CGAL_WAVEJETS_KERNEL_INLINE bool householder_kernel(double* A, std::size_t rows, std::size_t cols, double* scratch,
                                                    double* c)
 {
   if(rows < cols || cols == 0)
     return false;
   const std::size_t P = padded_rows(rows);
+  double* v = scratch;          // reflection of column j
+  double* v_next = scratch + P; // reflection of column j+1
+  double beta, alpha;
+  if(!householder_vector(A, P, 0, 0, v, beta, alpha))
+    return false;
   for(std::size_t j = 0; j < cols; ++j)
   {
     const std::size_t j0 = j / householder_block * householder_block;
-    double beta, alpha;
-    if(!householder_vector(A, P, j, j0, v, beta, alpha))
-      return false;
-    // Trailing columns j+1..cols (the right-hand side included), four at a time.
-    std::size_t l = j + 1;
-    double s[4] = {0., 0., 0., 0.};
-    for(; l + 4 <= cols + 1; l += 4)
+    double* next = A + (j + 1) * P; // column j+1, or b
+    double s;
+    householder_dots<1>(v, next, P, j0, P, &s);
+    s *= beta;
+    double beta_next = 0., alpha_next = 0.;
+    if(j + 1 < cols)
     {
-      householder_dots<4>(v, A + l * P, P, j0, P, s);
-      for(int m = 0; m < 4; ++m) s[m] *= beta;
-      householder_updates<4>(v, A + l * P, P, j0, P, s);
+      const double tail2 = householder_update_and_next(v, s, next, j0, P, j + 1, v_next);
+      if(!householder_finish(next, j + 1, tail2, v_next, beta_next, alpha_next))
+        return false;
     }
-    for(; l <= cols; ++l)
-    {
-      householder_dots<1>(v, A + l * P, P, j0, P, s);
-      s[0] *= beta;
-      householder_updates<1>(v, A + l * P, P, j0, P, s);
-    }
+    else
+      householder_updates<1>(v, next, P, j0, P, &s);
+    householder_reflect(v, beta, A, P, j0, j + 2, cols); // columns j+2..cols-1 and b
     A[j * P + j] = alpha; // diagonal of R
+    std::swap(v, v_next);
+    beta = beta_next;
+    alpha = alpha_next;
   }
   const double* b = A + cols * P;
   for(std::size_t jj = cols; jj-- > 0;)
@@ -262,7 +358,7 @@ __attribute__((target("avx"))) inline bool householder_avx(double* A, std::size_
 
 /// Solves min ||A c - b|| for a rows x cols matrix `A`. `A` is column-major with column stride
 /// padded_rows(rows), followed by `b` as column `cols`; rows `rows`..padded_rows(rows)-1 of every
-/// column must be zero. `v` is scratch of padded_rows(rows) doubles. On return the upper triangle
+/// column must be zero. `v` is scratch of 2 padded_rows(rows) doubles. On return the upper triangle
 /// of the first `cols` columns holds R (R(i, j) = A[j * padded_rows(rows) + i], i <= j) and
 /// `c[0..cols-1]` the solution. Returns false if the system has fewer rows than columns or is
 /// numerically rank-deficient.
