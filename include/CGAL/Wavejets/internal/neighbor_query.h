@@ -27,6 +27,7 @@
 #include <boost/iterator/function_output_iterator.hpp>
 
 #include <algorithm>
+#include <iterator>
 #include <cstddef>
 #include <utility>
 #include <vector>
@@ -68,6 +69,22 @@ public:
     m_size = indices.size();
     if(m_size > 0) // Kd_tree::build() requires points (an input of only non-finite points has none)
       m_tree.build();
+  }
+
+  /// All indices 0..N-1 in an order that keeps neighbors close together: the points of the tree in
+  /// the kd-tree's leaf order, then those left out of it (`in_tree[i]` false) by index. Processing
+  /// the points in this order instead of the input's keeps the tree nodes and the neighbors' coordinates
+  /// in cache from one point to the next (a random input order otherwise misses the cache on every
+  /// neighborhood once N is large).
+  std::vector<std::size_t> processing_order(const std::vector<unsigned char>& in_tree) const
+  {
+    std::vector<std::size_t> order;
+    order.reserve(m_points.size());
+    if(m_size > 0)
+      m_tree.root()->tree_items(std::back_inserter(order));
+    for(std::size_t i = 0; i < m_points.size(); ++i)
+      if(!in_tree[i]) order.push_back(i);
+    return order;
   }
 
   Neighbor_query(const Neighbor_query&) = delete;

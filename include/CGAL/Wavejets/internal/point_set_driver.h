@@ -201,6 +201,9 @@ Driver_run fit_each_point(const Input& input, const Driver_settings& settings,
 
   const Neighbor_query query(input.points, input.finite);
   const bool have_normals = !input.normals.empty();
+  // Points are visited in the tree's spatial order (each point's result does not depend on it).
+  const std::vector<std::size_t> order = query.processing_order(input.finite);
+  CGAL_assertion(order.size() == N);
 
   const std::size_t chunk_size = 256;
   std::vector<std::size_t> chunks;
@@ -216,8 +219,9 @@ Driver_run fit_each_point(const Input& input, const Driver_settings& settings,
     std::vector<std::pair<double, std::size_t> > scratch;
     std::vector<Eigen::Vector3d> offsets;
     const std::size_t end = (std::min)(begin + chunk_size, N);
-    for(std::size_t i = begin; i < end; ++i)
+    for(std::size_t position = begin; position < end; ++position)
     {
+      const std::size_t i = order[position];
       if(interrupted || progress.interrupted()) { interrupted = true; return false; }
       ++progress.advancement();
       if(!input.finite[i]) { status[i] = (unsigned char)(Fit_status::NON_FINITE_INPUT); continue; }
