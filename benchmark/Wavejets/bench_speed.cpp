@@ -168,7 +168,8 @@ static double time_knn(const Points& points, unsigned int k)
   pts.reserve(points.size());
   for(const auto& p : points) pts.emplace_back(p.first.x(), p.first.y(), p.first.z());
   std::vector<unsigned char> finite(points.size(), 1);
-  const WI::Neighbor_query query(pts, finite);
+  const WI::Neighbor_query query(pts, finite, Tag());
+  const std::vector<std::size_t> order = query.processing_order(finite); // the drivers' visiting order
   std::vector<std::size_t> chunks;
   for(std::size_t b = 0; b < points.size(); b += 256) chunks.push_back(b);
   std::vector<std::size_t> checksum(chunks.size(), 0);
@@ -176,9 +177,9 @@ static double time_knn(const Points& points, unsigned int k)
     std::vector<std::size_t> nb;
     std::vector<std::pair<double, std::size_t> > scratch;
     const std::size_t end = (std::min)(begin + 256, points.size());
-    for(std::size_t i = begin; i < end; ++i)
+    for(std::size_t position = begin; position < end; ++position)
     {
-      query.neighbors(i, k, 0., nb, scratch);
+      query.neighbors(order[position], k, 0., nb, scratch);
       checksum[begin / 256] += nb.size();
     }
     return true;

@@ -23,6 +23,7 @@
 #include <CGAL/Fuzzy_sphere.h>
 #include <CGAL/Kd_tree.h>
 #include <CGAL/property_map.h>
+#include <CGAL/tags.h>
 
 #include <boost/iterator/function_output_iterator.hpp>
 
@@ -58,7 +59,11 @@ private:
 
 public:
   /// `points` must outlive the query; `in_tree[i]` false keeps point i out of every neighborhood.
-  Neighbor_query(const std::vector<Point>& points, const std::vector<unsigned char>& in_tree)
+  /// With `Parallel_tag` the kd-tree is built in parallel (CGAL's TBB build: the same tree, hence
+  /// the same neighbors and processing order).
+  template <class ConcurrencyTag = Sequential_tag>
+  Neighbor_query(const std::vector<Point>& points, const std::vector<unsigned char>& in_tree,
+                 ConcurrencyTag tag = ConcurrencyTag())
     : m_points(points), m_map(make_property_map(points)), m_traits(m_map), m_tree(Splitter(bucket_size), m_traits),
       m_distance(m_map)
   {
@@ -68,7 +73,7 @@ public:
     m_tree.insert(indices.begin(), indices.end());
     m_size = indices.size();
     if(m_size > 0) // Kd_tree::build() requires points (an input of only non-finite points has none)
-      m_tree.build();
+      build(tag);
   }
 
   /// All indices 0..N-1 in an order that keeps neighbors close together: the points of the tree in
@@ -120,6 +125,11 @@ public:
   }
 
 private:
+  void build(Sequential_tag) { m_tree.build(); }
+#ifdef CGAL_LINKED_WITH_TBB
+  void build(Parallel_tag) { m_tree.template build<Parallel_tag>(); }
+#endif
+
   // Output of the sphere search (copy-assignable, as the kd-tree needs): (squared distance, index).
   struct Collector
   {

@@ -199,7 +199,7 @@ Driver_run fit_each_point(const Input& input, const Driver_settings& settings,
   std::vector<unsigned char> reduced(N, 0);
   if(N == 0) return run;
 
-  const Neighbor_query query(input.points, input.finite);
+  const Neighbor_query query(input.points, input.finite, ConcurrencyTag());
   const bool have_normals = !input.normals.empty();
   // Points are visited in the tree's spatial order (each point's result does not depend on it).
   const std::vector<std::size_t> order = query.processing_order(input.finite);
