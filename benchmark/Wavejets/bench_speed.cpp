@@ -169,7 +169,7 @@ static double time_knn(const Points& points, unsigned int k)
   for(const auto& p : points) pts.emplace_back(p.first.x(), p.first.y(), p.first.z());
   std::vector<unsigned char> finite(points.size(), 1);
   const WI::Neighbor_query query(pts, finite, Tag());
-  const std::vector<std::size_t> order = query.processing_order(finite); // the drivers' visiting order
+  const std::vector<std::size_t> order = query.processing_order(); // the drivers' visiting order
   std::vector<std::size_t> chunks;
   for(std::size_t b = 0; b < points.size(); b += 256) chunks.push_back(b);
   std::vector<std::size_t> checksum(chunks.size(), 0);

@@ -1397,7 +1397,7 @@ void determinism_cases()
     std::vector<unsigned char> in_tree(qp.size(), 1);
     in_tree[17] = in_tree[100] = in_tree[2999] = 0;
     const Query query(qp, in_tree);
-    const std::vector<std::size_t> order = query.processing_order(in_tree);
+    const std::vector<std::size_t> order = query.processing_order();
     std::vector<std::size_t> sorted_order = order;
     std::sort(sorted_order.begin(), sorted_order.end());
     bool permutation = sorted_order.size() == qp.size();
@@ -1416,7 +1416,7 @@ void determinism_cases()
           "consecutive points close together: mean step " + std::to_string(step_order / (order.size() - 4)) +
             " vs " + std::to_string(step_input / (order.size() - 4)) + " in input order");
     const Query empty_tree(qp, std::vector<unsigned char>(qp.size(), 0));
-    check(empty_tree.processing_order(std::vector<unsigned char>(qp.size(), 0)).size() == qp.size(),
+    check(empty_tree.processing_order().size() == qp.size(),
           "empty tree: every index, by index");
     end_case("mean step " + std::to_string(step_order / (order.size() - 4)) + " vs " +
              std::to_string(step_input / (order.size() - 4)) + " in input order");

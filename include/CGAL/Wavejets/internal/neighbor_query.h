@@ -77,16 +77,18 @@ public:
   }
 
   /// All indices 0..N-1 in an order that keeps neighbors close together: the points of the tree in
-  /// the kd-tree's leaf order, then those left out of it (`in_tree[i]` false) by index. Processing
-  /// the points in this order instead of the input's keeps the tree nodes and the neighbors' coordinates
-  /// in cache from one point to the next (a random input order otherwise misses the cache on every
-  /// neighborhood once N is large).
-  std::vector<std::size_t> processing_order(const std::vector<unsigned char>& in_tree) const
+  /// the kd-tree's leaf order, then those left out of it by index. Processing the points in this
+  /// order instead of the input's keeps the tree nodes and the neighbors' coordinates in cache from
+  /// one point to the next (a random input order otherwise misses the cache on every neighborhood
+  /// once N is large).
+  std::vector<std::size_t> processing_order() const
   {
     std::vector<std::size_t> order;
     order.reserve(m_points.size());
     if(m_size > 0)
       m_tree.root()->tree_items(std::back_inserter(order));
+    std::vector<unsigned char> in_tree(m_points.size(), 0);
+    for(std::size_t i : order) in_tree[i] = 1;
     for(std::size_t i = 0; i < m_points.size(); ++i)
       if(!in_tree[i]) order.push_back(i);
     return order;

@@ -202,7 +202,7 @@ Driver_run fit_each_point(const Input& input, const Driver_settings& settings,
   const Neighbor_query query(input.points, input.finite, ConcurrencyTag());
   const bool have_normals = !input.normals.empty();
   // Points are visited in the tree's spatial order (each point's result does not depend on it).
-  const std::vector<std::size_t> order = query.processing_order(input.finite);
+  const std::vector<std::size_t> order = query.processing_order();
   CGAL_assertion(order.size() == N);
 
   const std::size_t chunk_size = 256;
