@@ -76,7 +76,7 @@ Wavejets::Processing_report wavejet_enhance_normals(PointRange& points, unsigned
   using parameters::choose_parameter;
   using parameters::get_parameter;
   typedef Point_set_input<PointRange, NamedParameters> Input;
-  static_assert(Input::NP_helper::has_normal_map(), "Error: no normal map");
+  static_assert(may_have_normal_map<PointRange, NamedParameters>(), "Error: no normal map");
   const char* fn = "wavejet_enhance_normals";
   require(has_normal_map(points, np), fn, "the point set has no normal map");
   require(std::isfinite(gain.real()) && std::isfinite(gain.imag()) && std::abs(gain) <= 1e100, fn,

@@ -143,7 +143,7 @@ Wavejets::Processing_report wavejet_estimate_normals(PointRange& points, unsigne
 {
   using namespace Wavejets::internal;
   typedef Point_set_input<PointRange, NamedParameters> Input;
-  static_assert(Input::NP_helper::has_normal_map(), "Error: no normal map");
+  static_assert(may_have_normal_map<PointRange, NamedParameters>(), "Error: no normal map");
   const char* fn = "wavejet_estimate_normals";
   require(has_normal_map(points, np), fn, "the point set has no normal map (call add_normal_map() first)");
 

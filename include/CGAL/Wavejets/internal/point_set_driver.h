@@ -21,17 +21,16 @@
 #include <CGAL/Wavejets/Fitting_options.h>
 #include <CGAL/Wavejets/Processing_report.h>
 #include <CGAL/Wavejets/parameters.h>
+#include <CGAL/Wavejets/internal/cgal_compatibility.h>
 #include <CGAL/Wavejets/internal/fitting_core.h>
 #include <CGAL/Wavejets/internal/neighbor_query.h>
 
-#include <CGAL/Point_set_processing_3/internal/Callback_wrapper.h>
 #include <CGAL/boost/graph/named_params_helper.h>
 #include <CGAL/Named_function_parameters.h>
 #include <CGAL/for_each.h>
 #include <CGAL/number_utils.h>
 #include <CGAL/property_map.h>
 #include <CGAL/tags.h>
-#include <CGAL/version.h>
 
 #include <Eigen/Core>
 
@@ -45,8 +44,6 @@
 #include <vector>
 
 namespace CGAL {
-template <class Point, class Vector> class Point_set_3;
-
 namespace Wavejets {
 namespace internal {
 
@@ -55,23 +52,6 @@ inline void require(bool condition, const char* function, const char* message)
 {
   if(!condition)
     throw std::invalid_argument(std::string(function) + ": " + message);
-}
-
-/// Whether the caller gave a normal map (a Point_set_3 counts only if it has normals).
-template <class NP>
-bool has_normal_map_parameter(const NP&)
-{
-  return !CGAL::parameters::is_default_parameter<NP, CGAL::internal_np::normal_t>::value;
-}
-template <class Point, class Vector, class NP>
-bool has_normal_map(const CGAL::Point_set_3<Point, Vector>& ps, const NP& np)
-{
-  return has_normal_map_parameter(np) || ps.has_normal_map();
-}
-template <class PointRange, class NP>
-bool has_normal_map(const PointRange&, const NP& np)
-{
-  return has_normal_map_parameter(np);
 }
 
 /// Settings of the per-point loop, read once from the named parameters.
@@ -209,7 +189,7 @@ Driver_run fit_each_point(const Input& input, const Driver_settings& settings,
   std::vector<std::size_t> chunks;
   for(std::size_t b = 0; b < N; b += chunk_size) chunks.push_back(b);
 
-  Point_set_processing_3::internal::Callback_wrapper<ConcurrencyTag> progress(callback, N);
+  Callback_wrapper<ConcurrencyTag> progress(callback, N);
   std::atomic<bool> interrupted(false);
 
   CGAL::for_each<ConcurrencyTag>(chunks, [&](const std::size_t begin) -> bool {

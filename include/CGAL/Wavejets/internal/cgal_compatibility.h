@@ -1,0 +1,80 @@
+// Copyright (c) 2026 The CGAL Wavejets project.
+// All rights reserved.
+//
+// This file is part of the Wavejets package (https://github.com/cgal-wavejets/wavejets).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : The CGAL Wavejets developers
+
+#ifndef CGAL_WAVEJETS_INTERNAL_CGAL_COMPATIBILITY_H
+#define CGAL_WAVEJETS_INTERNAL_CGAL_COMPATIBILITY_H
+
+// The one place where the package meets what differs between the CGAL releases it supports
+// (5.5 to 6.1). Everything else calls these names, never the version-specific CGAL ones.
+//
+// - Whether a normal map is available. CGAL 5.5's Point_set_processing_3_np_helper has a
+//   static constexpr `has_normal_map()` without arguments; CGAL 6 replaced it by
+//   `has_normal_map(range, np)`, which is only constexpr for plain ranges and is a run-time
+//   check for a Point_set_3. The package answers both questions itself, from public API only
+//   (`is_default_parameter` and `Point_set_3::has_normal_map()`), identically on every version.
+// - The progress callback wrapper of Point_set_processing_3 (an internal header that has the
+//   same interface in 5.5 and 6.x, and that CGAL's own jet functions use).
+
+#include <CGAL/Named_function_parameters.h>
+#include <CGAL/Point_set_processing_3/internal/Callback_wrapper.h>
+#include <CGAL/version.h>
+
+#include <type_traits>
+
+#if CGAL_VERSION_NR < 1050501000
+#error "CGAL Wavejets needs CGAL 5.5 or newer"
+#endif
+
+namespace CGAL {
+template <class Point, class Vector> class Point_set_3;
+
+namespace Wavejets {
+namespace internal {
+
+template <class PointRange>
+struct Is_point_set_3 : std::false_type {};
+template <class Point, class Vector>
+struct Is_point_set_3<CGAL::Point_set_3<Point, Vector> > : std::true_type {};
+
+/// Whether the named parameters name a normal map.
+template <class NP>
+constexpr bool has_normal_map_parameter()
+{
+  return !CGAL::parameters::is_default_parameter<NP, CGAL::internal_np::normal_t>::value;
+}
+
+/// Compile-time: whether a normal map can exist for this range and these parameters
+/// (given in `np`, or the range is a `Point_set_3`, whose normal map is checked at run time).
+template <class PointRange, class NP>
+constexpr bool may_have_normal_map()
+{
+  return has_normal_map_parameter<NP>() || Is_point_set_3<std::remove_cv_t<PointRange> >::value;
+}
+
+/// Run time: whether a normal map is available (a `Point_set_3` counts only if it has normals).
+template <class Point, class Vector, class NP>
+bool has_normal_map(const CGAL::Point_set_3<Point, Vector>& ps, const NP&)
+{
+  return has_normal_map_parameter<NP>() || ps.has_normal_map();
+}
+template <class PointRange, class NP>
+bool has_normal_map(const PointRange&, const NP&)
+{
+  return has_normal_map_parameter<NP>();
+}
+
+/// Progress and interruption through the `callback` named parameter, for `ConcurrencyTag`.
+template <class ConcurrencyTag>
+using Callback_wrapper = CGAL::Point_set_processing_3::internal::Callback_wrapper<ConcurrencyTag>;
+
+} // namespace internal
+} // namespace Wavejets
+} // namespace CGAL
+
+#endif // CGAL_WAVEJETS_INTERNAL_CGAL_COMPATIBILITY_H
