@@ -56,6 +56,12 @@ orientation to PCA). Every new normal is computed from the original input before
     \cgalParamType{`std::size_t`, `>= 1`}
     \cgalParamDefault{4}
   \cgalParamNEnd
+  \cgalParamNBegin{degree_fitting}
+    \cgalParamDescription{\cgal's name of the order, as in `jet_estimate_normals()`: the same as
+                          `Wavejets::parameters::order` (if both are given, they must be equal)}
+    \cgalParamType{an integer, `>= 1`}
+    \cgalParamDefault{4}
+  \cgalParamNEnd
   \cgalParamNBegin{Wavejets::parameters::evaluation_radius}
     \cgalParamDescription{the radius s of a_{-1}(s), in world units; clamped to Rf per point (0: Rf)}
     \cgalParamType{`double` (or `geom_traits::FT`), finite and `>= 0`}

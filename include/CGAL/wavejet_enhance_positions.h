@@ -75,6 +75,12 @@ points is reported.
   \cgalParamNEnd
 \cgalNamedParamsEnd
 
+  \cgalParamNBegin{degree_fitting}
+    \cgalParamDescription{\cgal's name of the order, as in `jet_estimate_normals()`: the same as
+                          `Wavejets::parameters::order` (if both are given, they must be equal)}
+    \cgalParamType{an integer, `>= 1`}
+    \cgalParamDefault{4}
+  \cgalParamNEnd
 \return a `Wavejets::Processing_report`, with the number of clamped points.
 \throws std::invalid_argument on the conditions of `wavejet_estimate_normals()`, a non-finite gain or |gain| > 1e100,
 a `maximum_displacement` that is not positive, or `write_normals` without a normal map.

@@ -41,6 +41,12 @@ otherwise the PCA normal's sign is arbitrary, so the signs of H, k1, k2 are too 
        is required) and:
 
 \cgalNamedParamsBegin
+  \cgalParamNBegin{degree_monge}
+    \cgalParamDescription{\cgal's degree of the Monge form (`Monge_via_jet_fitting`): only 2, the degree of the
+                          curvatures computed here, is accepted}
+    \cgalParamType{an integer, `== 2`}
+    \cgalParamDefault{2}
+  \cgalParamNEnd
   \cgalParamNBegin{Wavejets::parameters::mean_curvature_map}
     \cgalParamDescription{a property map receiving the mean curvature H}
     \cgalParamType{a model of `WritablePropertyMap` whose key type is the value type of the iterator of `PointRange` and whose value type is `geom_traits::FT`}
@@ -83,7 +89,8 @@ otherwise the PCA normal's sign is arbitrary, so the signs of H, k1, k2 are too 
 \cgalNamedParamsEnd
 
 \return a `Wavejets::Processing_report`; unfitted points keep the values their maps had.
-\throws std::invalid_argument on the conditions of `wavejet_estimate_normals()`, or if no output map is given.
+\throws std::invalid_argument on the conditions of `wavejet_estimate_normals()`, if no output map is given, or if
+        `degree_monge` is not 2.
 */
 template <typename ConcurrencyTag, typename PointRange,
           typename NamedParameters = parameters::Default_named_parameters>
@@ -106,7 +113,7 @@ Wavejets::Processing_report wavejet_estimate_curvatures(PointRange& points, unsi
                           !is_default_parameter<NamedParameters, wnp::minimal_principal_direction_map_t>::value;
   require(any_output, fn, "no output map given (e.g. Wavejets::parameters::mean_curvature_map(m))");
 
-  Driver_settings settings = read_driver_settings(k, np, 2, fn);
+  Driver_settings settings = read_driver_settings(k, np, 2, fn, 0, true);
   // Curvatures read from the first fit (the default) do not use the corrected tangent frame:
   // skip the re-fits, which would change nothing that is written (about 3x faster).
   if(settings.fitting.curvature_frame == Wavejets::Curvature_frame::INITIAL_FRAME)

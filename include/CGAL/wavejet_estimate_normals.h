@@ -74,6 +74,12 @@ normal read from `normal_map`.
     \cgalParamType{`std::size_t`, `>= 1`}
     \cgalParamDefault{2}
   \cgalParamNEnd
+  \cgalParamNBegin{degree_fitting}
+    \cgalParamDescription{\cgal's name of the order, as in `jet_estimate_normals()`: the same as
+                          `Wavejets::parameters::order` (if both are given, they must be equal)}
+    \cgalParamType{an integer, `>= 1`}
+    \cgalParamDefault{2}
+  \cgalParamNEnd
   \cgalParamNBegin{Wavejets::parameters::neighbors_per_coefficient}
     \cgalParamDescription{adaptive order: K is lowered until the neighborhood (query included) has at
                           least this many points per unknown, (K+1)(K+2)/2 unknowns (and the system has full rank)}
@@ -134,7 +140,9 @@ normal read from `normal_map`.
 
 \return a `Wavejets::Processing_report`: points that could not be fitted keep their normal and are counted.
 \throws std::invalid_argument if `k < 2` and no positive `neighbor_radius`, if `neighbor_radius` is negative or
-        not finite, if `order < 1`, if `neighbors_per_coefficient < 1`, or if a `Point_set_3` has no normal map.
+        not finite, if `order < 1` (or `degree_fitting < 1`), if `order` and `degree_fitting` are both given and
+        differ, if `degree_monge` is given (it has no meaning here), if `neighbors_per_coefficient < 1`, or if a
+        `Point_set_3` has no normal map.
 */
 template <typename ConcurrencyTag, typename PointRange,
           typename NamedParameters = parameters::Default_named_parameters>

@@ -66,20 +66,60 @@ struct Driver_settings
 };
 
 /// Reads the settings shared by all functions. `default_order` and `default_tangent_plane_order`
-/// (0: the order itself) differ per function.
+/// The requested order K: `Wavejets::parameters::order`, or \cgal's `degree_fitting` (the name the jet
+/// functions use, so that a call to `jet_estimate_normals()` keeps its meaning when the function is
+/// swapped). Both may be given only with the same value.
+template <class NP>
+std::size_t read_order(const NP& np, std::size_t default_order, const char* fn)
+{
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  using CGAL::parameters::is_default_parameter;
+  constexpr bool has_order = !is_default_parameter<NP, Wavejets::internal_np::order_t>::value;
+  constexpr bool has_degree = !is_default_parameter<NP, CGAL::internal_np::degree_fitting_t>::value;
+  // Read as signed integers, so that a negative value is reported instead of wrapping around.
+  const long long order = static_cast<long long>(choose_parameter(get_parameter(np, Wavejets::internal_np::order), 0));
+  const long long degree = static_cast<long long>(choose_parameter(get_parameter(np, CGAL::internal_np::degree_fitting), 0));
+  if(has_order && has_degree)
+    require(order == degree, fn, ("order(" + std::to_string(order) + ") and degree_fitting(" + std::to_string(degree) +
+                                  ") differ: give one of them").c_str());
+  if(!has_order && !has_degree) return default_order;
+  require((has_order ? order : degree) >= 1, fn, has_order ? "order must be >= 1" : "degree_fitting must be >= 1");
+  return std::size_t(has_order ? order : degree);
+}
+
+/// \cgal's `degree_monge` (of `jet_smooth_point_set()` and `Monge_via_jet_fitting`): the package computes
+/// second-order differential quantities only. Where curvatures are computed, `degree_monge(2)` is
+/// what is done and is accepted; any other use is rejected rather than silently ignored.
+template <class NP>
+void check_degree_monge(const NP& np, const char* fn, bool computes_curvatures)
+{
+  using CGAL::parameters::is_default_parameter;
+  if constexpr(!is_default_parameter<NP, CGAL::internal_np::degree_monge_t>::value)
+  {
+    const long long degree = static_cast<long long>(
+      CGAL::parameters::get_parameter(np, CGAL::internal_np::degree_monge));
+    require(computes_curvatures, fn, "degree_monge has no meaning here (it is the degree of the Monge form, "
+                                     "used by wavejet_estimate_curvatures only); the fitting order is `order`");
+    require(degree == 2, fn, "degree_monge must be 2: curvatures are second-order quantities (higher Monge "
+                             "coefficients are not computed)");
+  }
+}
+
+/// (0: the order itself) differ per function; `computes_curvatures` accepts `degree_monge(2)`.
 template <class NP>
 Driver_settings read_driver_settings(unsigned int k, const NP& np, std::size_t default_order, const char* fn,
-                                     std::size_t default_tangent_plane_order = 0)
+                                     std::size_t default_tangent_plane_order = 0, bool computes_curvatures = false)
 {
   using CGAL::parameters::choose_parameter;
   using CGAL::parameters::get_parameter;
   Driver_settings s;
   s.k = k;
   s.neighbor_radius = to_double(choose_parameter(get_parameter(np, CGAL::internal_np::neighbor_radius), 0.));
-  s.order = choose_parameter(get_parameter(np, Wavejets::internal_np::order), default_order);
+  s.order = read_order(np, default_order, fn);
+  check_degree_monge(np, fn, computes_curvatures);
   require(s.k >= 2 || s.neighbor_radius > 0, fn, "needs k >= 2 or neighbor_radius > 0");
   require(std::isfinite(s.neighbor_radius) && s.neighbor_radius >= 0, fn, "neighbor_radius must be finite and >= 0");
-  require(s.order >= 1, fn, "order must be >= 1");
   s.fitting.neighbors_per_coefficient =
     choose_parameter(get_parameter(np, Wavejets::internal_np::neighbors_per_coefficient), 1.1);
   require(s.fitting.neighbors_per_coefficient >= 1., fn, "neighbors_per_coefficient must be >= 1");
