@@ -77,6 +77,23 @@ struct Sample
   Point position;
   Vector normal;
 };
+struct Sample_point_map
+{
+  typedef Sample key_type;
+  typedef Point value_type;
+  typedef const Point& reference;
+  typedef boost::readable_property_map_tag category;
+  friend const Point& get(const Sample_point_map&, const Sample& s) { return s.position; }
+};
+struct Sample_normal_map
+{
+  typedef Sample key_type;
+  typedef Vector value_type;
+  typedef const Vector& reference;
+  typedef boost::read_write_property_map_tag category;
+  friend const Vector& get(const Sample_normal_map&, const Sample& s) { return s.normal; }
+  friend void put(const Sample_normal_map&, Sample& s, const Vector& n) { s.normal = n; }
+};
 
 static void test_degree_fitting(const std::vector<PV>& input)
 {
@@ -165,8 +182,8 @@ static void test_other_cgal_names(const std::vector<PV>& input)
   // point_map / normal_map into a user struct: same normals as on pairs.
   std::vector<Sample> samples;
   for(const PV& p : input) samples.push_back(Sample{p.first, p.second});
-  CGAL::wavejet_estimate_normals<Seq>(samples, 18, CGAL::parameters::point_map(CGAL::make_property_map(&Sample::position))
-                                                      .normal_map(CGAL::make_property_map(&Sample::normal)));
+  CGAL::wavejet_estimate_normals<Seq>(samples, 18, CGAL::parameters::point_map(Sample_point_map())
+                                                      .normal_map(Sample_normal_map()));
   bool same = true;
   for(std::size_t i = 0; i < samples.size(); ++i) same = same && samples[i].normal == knn[i].second;
   check(same, "point_map and normal_map on a user struct are honoured (same normals as on pairs)");
