@@ -5,6 +5,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Point_set_3.h>
 #include <CGAL/Point_set_3/IO.h>
+#include <CGAL/Wavejets/version.h>
 #include <CGAL/compute_average_spacing.h>
 #include <CGAL/mst_orient_normals.h>
 #include <CGAL/property_map.h>
@@ -54,7 +55,7 @@ using Clock = std::chrono::steady_clock;
 
 namespace {
 
-const char* const version = "wavejets 1.0 (CGAL Wavejets package)";
+const char* const version = "wavejets " CGAL_WAVEJETS_VERSION_STR " (CGAL Wavejets package)";
 
 // ------------------------------------------------------------------------------------------------
 // Errors: a user error (bad flag: exit 2) or a file/processing error (exit 1), one line each.

@@ -1,0 +1,259 @@
+// Includes every public header and calls every public function (Wavejet_fitting and the four
+// point-set functions, with the named parameters that change the computation), compiled with the
+// project's warnings as errors. Writes every result, one labelled record a line with %.17g
+// values, to $WAVEJETS_OUTPUT_DIR/public_api_results.txt (default: the working directory).
+// When $WAVEJETS_REFERENCE_RESULTS names such a file from another build (another compiler, another
+// CGAL release), every record must agree with it to 1e-12 relative to the record's largest value:
+// scripts/test.sh compares the clang + CGAL 6.1 leg with the g++ + CGAL 5.5 leg this way.
+// Run from test/Wavejets (reads data/kitten.xyz).
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/IO/read_points.h>
+#include <CGAL/property_map.h>
+#include <CGAL/tags.h>
+#include <CGAL/version.h>
+
+#include <CGAL/Wavejet_fitting.h>
+#include <CGAL/Wavejets/Fitting_options.h>
+#include <CGAL/Wavejets/Processing_report.h>
+#include <CGAL/Wavejets/parameters.h>
+#include <CGAL/Wavejets/version.h>
+#include <CGAL/wavejet_enhance_normals.h>
+#include <CGAL/wavejet_enhance_positions.h>
+#include <CGAL/wavejet_estimate_curvatures.h>
+#include <CGAL/wavejet_estimate_normals.h>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+typedef CGAL::Epick Kernel;
+typedef Kernel::Point_3 Point;
+typedef Kernel::Vector_3 Vector;
+typedef std::pair<Point, Vector> PV;
+typedef CGAL::First_of_pair_property_map<PV> Point_map;
+typedef CGAL::Second_of_pair_property_map<PV> Normal_map;
+typedef CGAL::Sequential_tag Seq;
+namespace WJP = CGAL::Wavejets::parameters;
+
+/// Labelled records of doubles, written as text.
+class Records
+{
+public:
+  void add(const std::string& label, const std::vector<double>& values) { m_records.emplace_back(label, values); }
+  void add_points(const std::string& label, const std::vector<PV>& points, bool normals)
+  {
+    for(std::size_t i = 0; i < points.size(); ++i)
+    {
+      const Point& p = points[i].first;
+      const Vector& n = points[i].second;
+      std::vector<double> v{p.x(), p.y(), p.z()};
+      if(normals) v.insert(v.end(), {n.x(), n.y(), n.z()});
+      add(label + "[" + std::to_string(i) + "]", v);
+    }
+  }
+  void write(std::ostream& os) const
+  {
+    char buffer[32];
+    for(const auto& r : m_records)
+    {
+      os << r.first;
+      for(double x : r.second)
+      {
+        std::snprintf(buffer, sizeof buffer, " %.17g", x);
+        os << buffer;
+      }
+      os << "\n";
+    }
+  }
+  static std::map<std::string, std::vector<double> > read(std::istream& is)
+  {
+    std::map<std::string, std::vector<double> > records;
+    std::string line;
+    while(std::getline(is, line))
+    {
+      std::istringstream ls(line);
+      std::string label;
+      ls >> label;
+      std::vector<double> values;
+      std::string word;
+      while(ls >> word) values.push_back(std::strtod(word.c_str(), nullptr));
+      records[label] = values;
+    }
+    return records;
+  }
+  const std::vector<std::pair<std::string, std::vector<double> > >& records() const { return m_records; }
+
+private:
+  std::vector<std::pair<std::string, std::vector<double> > > m_records;
+};
+
+static void fit_one_point(const std::vector<PV>& input, Records& out)
+{
+  typedef CGAL::Wavejet_fitting<Kernel> Fitting;
+  // The 60 nearest points to the point 100 (brute force; ties by index), the query first.
+  std::vector<std::pair<double, std::size_t> > by_distance;
+  for(std::size_t i = 0; i < input.size(); ++i)
+    by_distance.emplace_back(CGAL::squared_distance(input[i].first, input[100].first), i);
+  std::sort(by_distance.begin(), by_distance.end());
+  std::vector<Point> neighborhood;
+  for(std::size_t j = 0; j < 61; ++j) neighborhood.push_back(input[by_distance[j].second].first);
+
+  for(std::size_t order : {2, 4, 6})
+  {
+    Fitting fitting;
+    const Fitting::Wavejet_form form = fitting(neighborhood.begin(), neighborhood.end(), order);
+    const std::string label = "fitting_K" + std::to_string(order);
+    const Vector n = form.normal_direction(), d1 = form.maximal_principal_direction();
+    out.add(label + "_status", {double(int(form.status())), double(form.order()), form.radius(),
+                                double(form.number_of_points()), double(form.number_of_corrections())});
+    out.add(label + "_normal", {n.x(), n.y(), n.z()});
+    out.add(label + "_curvatures", {form.mean_curvature(), form.gaussian_curvature(), form.principal_curvatures(0),
+                                    form.principal_curvatures(1)});
+    out.add(label + "_direction", {d1.x(), d1.y(), d1.z()});
+    out.add(label + "_coefficients", form.coefficients());
+    const std::complex<double> a0 = form.enclosed_area_coefficient(0), a2 = form.enclosed_area_coefficient(2, 0.5 * form.radius());
+    out.add(label + "_enclosed_area", {a0.real(), a0.imag(), a2.real(), a2.imag()});
+    const std::complex<double> f31 = form.coefficient(3 < order ? 3 : 1, 1);
+    out.add(label + "_coefficient", {f31.real(), f31.imag(), fitting.condition_number()});
+  }
+}
+
+static void report(const std::string& label, const CGAL::Wavejets::Processing_report& r, Records& out)
+{
+  out.add(label + "_report", {double(r.number_of_points), double(r.number_of_fitted_points),
+                              double(r.number_of_unfitted_points), double(r.number_of_reduced_order_points),
+                              double(r.number_of_clamped_points), double(r.interrupted)});
+  std::ostringstream text;
+  text << r; // operator<< is public API too
+  if(text.str().empty()) std::exit(EXIT_FAILURE);
+}
+
+static void point_set_functions(const std::vector<PV>& input, Records& out)
+{
+  const auto pm = CGAL::parameters::point_map(Point_map()).normal_map(Normal_map());
+  {
+    std::vector<PV> points = input;
+    report("estimate_normals_K4", CGAL::wavejet_estimate_normals<Seq>(points, 24, WJP::order(4, pm)), out);
+    out.add_points("estimate_normals_K4", points, true);
+  }
+  {
+    std::vector<PV> points = input;
+    report("estimate_normals_robust", CGAL::wavejet_estimate_normals<Seq>(points, 30,
+             WJP::robust_iterations(3).orient_with_input_normals(true).neighbor_radius(0.05).point_map(Point_map())
+               .normal_map(Normal_map())), out);
+    out.add_points("estimate_normals_robust", points, true);
+  }
+  {
+    std::vector<PV> points = input;
+    std::vector<double> h(points.size()), kg(points.size()), k1(points.size()), k2(points.size());
+    std::vector<Vector> d1(points.size()), d2(points.size());
+    std::vector<std::size_t> index(points.size());
+    for(std::size_t i = 0; i < index.size(); ++i) index[i] = i;
+    std::vector<Point> positions;
+    for(const PV& p : input) positions.push_back(p.first);
+    report("estimate_curvatures", CGAL::wavejet_estimate_curvatures<Seq>(index, 30,
+             WJP::mean_curvature_map(CGAL::make_property_map(h)).gaussian_curvature_map(CGAL::make_property_map(kg))
+               .maximal_principal_curvature_map(CGAL::make_property_map(k1))
+               .minimal_principal_curvature_map(CGAL::make_property_map(k2))
+               .maximal_principal_direction_map(CGAL::make_property_map(d1))
+               .minimal_principal_direction_map(CGAL::make_property_map(d2))
+               .curvature_frame(CGAL::Wavejets::Curvature_frame::TANGENT_FRAME).order(3)
+               .point_map(CGAL::make_property_map(positions))), out);
+    for(std::size_t i = 0; i < index.size(); ++i)
+      out.add("estimate_curvatures[" + std::to_string(i) + "]",
+              {h[i], kg[i], k1[i], k2[i], d1[i].x(), d1[i].y(), d1[i].z(), d2[i].x(), d2[i].y(), d2[i].z()});
+  }
+  {
+    std::vector<PV> points = input;
+    report("enhance_positions", CGAL::wavejet_enhance_positions<Seq>(points, 40, 2.,
+             WJP::order(4).write_normals(true).evaluation_radius(0.03).point_map(Point_map()).normal_map(Normal_map())), out);
+    out.add_points("enhance_positions", points, true);
+  }
+  {
+    std::vector<PV> points = input;
+    report("enhance_normals", CGAL::wavejet_enhance_normals<Seq>(points, 40, std::complex<double>(1., 2.),
+             WJP::order(5, pm)), out);
+    out.add_points("enhance_normals", points, true);
+  }
+}
+
+/// Compares with a reference file: every record present in both, to `tolerance` relative to the
+/// record's largest absolute value; every reference record must be present here.
+static bool compare(const Records& results, const char* reference_file, double tolerance)
+{
+  std::ifstream in(reference_file);
+  if(!in)
+  {
+    std::cerr << "cannot read the reference results " << reference_file << std::endl;
+    return false;
+  }
+  const std::map<std::string, std::vector<double> > reference = Records::read(in);
+  std::size_t compared = 0, differing = 0;
+  double worst = 0.;
+  std::string worst_label;
+  for(const auto& r : results.records())
+  {
+    const auto it = reference.find(r.first);
+    if(it == reference.end() || it->second.size() != r.second.size())
+    {
+      std::cerr << "record " << r.first << " is missing or has another size in the reference" << std::endl;
+      ++differing;
+      continue;
+    }
+    double scale = 0., difference = 0.;
+    for(std::size_t j = 0; j < r.second.size(); ++j)
+    {
+      scale = (std::max)({scale, std::abs(r.second[j]), std::abs(it->second[j])});
+      difference = (std::max)(difference, std::abs(r.second[j] - it->second[j]));
+    }
+    const double relative = scale > 0 ? difference / scale : 0.;
+    if(!(relative <= tolerance)) ++differing;
+    if(!(relative <= worst)) { worst = relative; worst_label = r.first; }
+    ++compared;
+  }
+  const bool ok = differing == 0 && compared == reference.size();
+  std::cout << (ok ? "[ OK ] " : "[FAIL] ") << "agreement with " << reference_file << ": " << compared << " records of "
+            << reference.size() << ", " << differing << " differ by more than " << tolerance
+            << " relative; largest difference " << worst << " (" << worst_label << ")" << std::endl;
+  return ok;
+}
+
+int main(int argc, char** argv)
+{
+  const char* file = argc > 1 ? argv[1] : "data/kitten.xyz";
+  std::vector<PV> input;
+  if(!CGAL::IO::read_points(file, std::back_inserter(input), CGAL::parameters::point_map(Point_map()).normal_map(Normal_map())) ||
+     input.size() < 200)
+  {
+    std::cerr << "cannot read " << file << std::endl;
+    return EXIT_FAILURE;
+  }
+  Records results;
+  fit_one_point(input, results);
+  point_set_functions(input, results);
+
+  const char* directory = std::getenv("WAVEJETS_OUTPUT_DIR");
+  const std::string output = std::string(directory && *directory ? directory : ".") + "/public_api_results.txt";
+  std::ofstream os(output);
+  results.write(os);
+  os.close();
+  std::cout << "CGAL " << CGAL_VERSION_STR << ", CGAL Wavejets " << CGAL_WAVEJETS_VERSION_STR << ": "
+            << results.records().size() << " records written to " << output << std::endl;
+  if(!os) return EXIT_FAILURE;
+
+  const char* reference = std::getenv("WAVEJETS_REFERENCE_RESULTS");
+  if(reference && *reference)
+    return compare(results, reference, 1e-12) ? EXIT_SUCCESS : EXIT_FAILURE;
+  std::cout << "no WAVEJETS_REFERENCE_RESULTS: results written, nothing compared" << std::endl;
+  return EXIT_SUCCESS;
+}
