@@ -1,26 +1,86 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds the tests, examples and the CLI tool (assertions on in the tests)
-# in Release, runs the whole CTest suite; then builds and runs the same suite (without the
-# documentation test) with AddressSanitizer + UndefinedBehaviorSanitizer. Both require TBB
-# (WAVEJETS_REQUIRE_TBB). WAVEJETS_SKIP_SANITIZERS=1 skips the second build.
+# The README's test command (and CI's, through .ci/run): installs what is missing, then builds and
+# runs the whole CTest suite (tests, examples, the CLI tool's tests, the documentation, the header
+# and install checks) on a build matrix, and prints the time of each leg and the total:
+#   1. g++     + CGAL 5.5 (Debian)  Release, benchmarks built too
+#   2. clang++ + CGAL 6.1.1         Release, benchmarks built too; its results of every public
+#      function are compared with leg 1's to 1e-12 relative (test_public_api_results)
+#   3. g++     + CGAL 5.5 (Debian)  AddressSanitizer + UndefinedBehaviorSanitizer, Debug at -O1
+# Leg 2 needs the unmodified CGAL 6.1.1 release: an unpacked folder named by WAVEJETS_CGAL6_DIR, or
+# the tarball named by WAVEJETS_CGAL6_TARBALL, or ../shared/deps/CGAL-6.1.1.tar.xz beside the
+# clone (unpacked into build/deps). Without it, leg 2 is skipped with a banner, except under CI=true
+# where it is an error. WAVEJETS_SKIP_SANITIZERS=1 skips leg 3.
 set -euo pipefail
-cd "$(dirname "$0")/.."
+root="$(cd "$(dirname "$0")/.." && pwd)"
+cd "$root"
+start=$(date +%s)
 bash scripts/install_dependencies.sh
-build=${WAVEJETS_TEST_BUILD_DIR:-build/test}
-cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=ON -DWAVEJETS_BUILD_BENCHMARKS=OFF -DWAVEJETS_REQUIRE_TBB=ON
-cmake --build "$build" -j2
-(cd "$build" && ctest --output-on-failure)
+summary=""
+
+# run_leg NAME BUILD_DIR [cmake arguments...]: configure, build with 2 jobs, run CTest.
+run_leg() {
+  local name="$1" build="$2"
+  shift 2
+  local leg_start
+  leg_start=$(date +%s)
+  echo
+  echo "=================== $name ==================="
+  cmake -S . -B "$build" -DBUILD_TESTING=ON -DWAVEJETS_REQUIRE_TBB=ON "$@"
+  cmake --build "$build" -j2
+  (cd "$build" && ctest --output-on-failure)
+  summary="$summary$(printf '%-55s %4d s' "$name" $(($(date +%s) - leg_start)))"$'\n'
+}
+
+# The CGAL 6.1.1 release, if at hand: prints the folder holding its CGALConfig.cmake.
+find_cgal6() {
+  if [ -n "${WAVEJETS_CGAL6_DIR:-}" ]; then
+    [ -f "$WAVEJETS_CGAL6_DIR/CGALConfig.cmake" ] || { echo "WAVEJETS_CGAL6_DIR=$WAVEJETS_CGAL6_DIR has no CGALConfig.cmake" >&2; return 1; }
+    echo "$WAVEJETS_CGAL6_DIR"; return 0
+  fi
+  local tarball="${WAVEJETS_CGAL6_TARBALL:-$root/../shared/deps/CGAL-6.1.1.tar.xz}"
+  [ -f "$tarball" ] || return 1
+  local dest="$root/build/deps"
+  local unpacked="$dest/$(basename "$tarball" .tar.xz)"
+  if [ ! -f "$unpacked/CGALConfig.cmake" ]; then
+    mkdir -p "$dest"
+    tar -xJf "$tarball" -C "$dest"
+  fi
+  [ -f "$unpacked/CGALConfig.cmake" ] || { echo "$tarball did not unpack to $unpacked" >&2; return 1; }
+  echo "$unpacked"
+}
+
+gcc_build=${WAVEJETS_TEST_BUILD_DIR:-build/test}
+run_leg "1. g++ + CGAL $(dpkg-query -W -f='${Version}' libcgal-dev 2>/dev/null | cut -d- -f1), Release" "$gcc_build" \
+  -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=g++ -DWAVEJETS_BUILD_BENCHMARKS=ON
+
+if cgal6=$(find_cgal6); then
+  run_leg "2. clang++ + CGAL $(cat "$cgal6/VERSION" 2>/dev/null || echo 6.1.1), Release" "${WAVEJETS_CLANG_BUILD_DIR:-build/clang-cgal6}" \
+    -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=clang++ -DCGAL_DIR="$cgal6" -DWAVEJETS_BUILD_BENCHMARKS=ON \
+    -DWAVEJETS_REFERENCE_RESULTS="$root/$gcc_build/test/Wavejets/public_api_results.txt"
+else
+  echo
+  echo "##########################################################################################"
+  echo "## SKIPPED: leg 2 (clang++ + CGAL 6.1.1). The CGAL 6.1.1 release is not at hand: set     ##"
+  echo "## WAVEJETS_CGAL6_DIR (unpacked) or WAVEJETS_CGAL6_TARBALL, or put ../shared/deps beside. ##"
+  echo "##########################################################################################"
+  if [ "${CI:-}" = true ]; then echo "CI must run every leg of the matrix." >&2; exit 1; fi
+  summary="${summary}2. clang++ + CGAL 6.1.1                                 SKIPPED (release not at hand)"$'\n'
+fi
 
 if [ "${WAVEJETS_SKIP_SANITIZERS:-0}" != 1 ]; then
-  # The whole CTest suite again (tests, examples, the CLI tool's tests with its renderer), built
-  # with AddressSanitizer + UndefinedBehaviorSanitizer, Debug at -O1; benchmarks off and the
-  # documentation off (doxygen runs no code of the package). Every UBSan finding and every leak is
-  # fatal. test_fuzz runs 100000 real fits instead of 1e6 under sanitizers (see test_fuzz.cpp).
-  asan=${WAVEJETS_ASAN_BUILD_DIR:-build/asan}
-  cmake -S . -B "$asan" -DCMAKE_BUILD_TYPE=Debug -DBUILD_TESTING=ON -DWAVEJETS_TESTS_ONLY=OFF \
-    -DWAVEJETS_BUILD_BENCHMARKS=OFF -DCMAKE_DISABLE_FIND_PACKAGE_Doxygen=ON -DWAVEJETS_REQUIRE_TBB=ON \
+  # Every UBSan finding and every leak is fatal. Benchmarks and the documentation are off (doxygen
+  # runs no code of the package). test_fuzz runs 100000 real fits instead of 1e6 under sanitizers.
+  export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1
+  export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+  run_leg "3. g++ + CGAL 5.5, ASan + UBSan (Debug -O1)" "${WAVEJETS_ASAN_BUILD_DIR:-build/asan}" \
+    -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_COMPILER=g++ -DWAVEJETS_TESTS_ONLY=OFF -DWAVEJETS_BUILD_BENCHMARKS=OFF \
+    -DCMAKE_DISABLE_FIND_PACKAGE_Doxygen=ON \
     -DCMAKE_CXX_FLAGS="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined -O1"
-  cmake --build "$asan" -j2
-  (cd "$asan" && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1 \
-     UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 ctest --output-on-failure)
+else
+  summary="${summary}3. g++ + CGAL 5.5, ASan + UBSan                         SKIPPED (WAVEJETS_SKIP_SANITIZERS=1)"$'\n'
 fi
+
+echo
+echo "=================== build matrix: all legs passed ==================="
+printf '%s' "$summary"
+echo "total (with the installation check): $(($(date +%s) - start)) s"
