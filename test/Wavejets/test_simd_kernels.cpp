@@ -1,0 +1,162 @@
+// The least-squares kernel's three compilations (least_squares.h): the baseline code, the AVX
+// clone and the AVX2 + FMA clone, run on the same systems, with whichever compiler built this test
+// (g++ and clang++ both run it in scripts/test.sh). Checks the documented agreement:
+//   - AVX == baseline, bitwise (same arithmetic, wider registers);
+//   - AVX2 + FMA agrees with the baseline to 1e-12 relative, times the system's condition number;
+//   - the baseline solves the system to 1e-13 relative (times the condition number) of Eigen's
+//     HouseholderQR;
+//   - the run-time dispatch (householder_least_squares) picks the best clone the processor
+//     supports (bitwise equal to it), so a processor without AVX falls back to the baseline;
+//   - a rank-deficient system is reported (false) by every variant.
+// A clone the processor cannot run is reported as skipped, never run.
+
+#include <CGAL/Wavejets/internal/least_squares.h>
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace WI = CGAL::Wavejets::internal;
+
+static int failures = 0, checks = 0;
+static void check(bool ok, const std::string& what)
+{
+  ++checks;
+  std::cout << (ok ? "[ OK ] " : "[FAIL] ") << what << std::endl;
+  if(!ok) ++failures;
+}
+
+typedef bool (*Kernel)(double*, std::size_t, std::size_t, double*, double*);
+
+/// One system: the column-major padded layout the kernels take (b as the last column).
+struct System
+{
+  std::size_t rows, cols;
+  Eigen::MatrixXd M;
+  Eigen::VectorXd b;
+};
+
+/// Solves `s` with `kernel`; false if the kernel reports a rank-deficient system.
+static bool solve(Kernel kernel, const System& s, std::vector<double>& c)
+{
+  const std::size_t P = WI::padded_rows(s.rows);
+  std::vector<double, WI::Aligned_allocator<double> > A(P * (s.cols + 1), 0.), v(2 * P, 0.);
+  for(std::size_t j = 0; j < s.cols; ++j)
+    for(std::size_t i = 0; i < s.rows; ++i) A[j * P + i] = s.M(i, j);
+  for(std::size_t i = 0; i < s.rows; ++i) A[s.cols * P + i] = s.b(i);
+  c.assign(s.cols, 0.);
+  return kernel(A.data(), s.rows, s.cols, v.data(), c.data());
+}
+
+static std::string sci(double x)
+{
+  char b[32];
+  std::snprintf(b, sizeof b, "%.2e", x);
+  return b;
+}
+
+static double relative_difference(const std::vector<double>& a, const std::vector<double>& b)
+{
+  double d = 0., n = 0.;
+  for(std::size_t i = 0; i < a.size(); ++i)
+  {
+    d = (std::max)(d, std::abs(a[i] - b[i]));
+    n = (std::max)(n, std::abs(b[i]));
+  }
+  return n > 0 ? d / n : d;
+}
+
+int main()
+{
+  std::mt19937_64 random(20261201);
+  std::uniform_real_distribution<double> uniform(-1., 1.);
+  // Sizes of the Wavejet systems (unknowns (K+1)(K+2)/2 for K = 1..6) and a few others.
+  const std::size_t columns[] = {3, 6, 10, 15, 21, 28};
+  std::vector<System> systems;
+  for(std::size_t cols : columns)
+    for(std::size_t rows : {cols, cols + 1, cols + 7, 2 * cols + 3, std::size_t(101)})
+      if(rows >= cols)
+      {
+        System s{rows, cols, Eigen::MatrixXd(rows, cols), Eigen::VectorXd(rows)};
+        for(std::size_t i = 0; i < rows; ++i)
+        {
+          for(std::size_t j = 0; j < cols; ++j) s.M(i, j) = uniform(random);
+          s.b(i) = uniform(random);
+        }
+        systems.push_back(s);
+      }
+
+#ifdef CGAL_WAVEJETS_AVX_DISPATCH
+  const bool has_avx = __builtin_cpu_supports("avx");
+  const bool has_fma = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+#else
+  const bool has_avx = false, has_fma = false;
+  std::cout << "this build has no AVX dispatch (not x86 with g++/clang++, or CGAL_WAVEJETS_NO_AVX_DISPATCH): "
+               "the baseline kernel alone is checked" << std::endl;
+#endif
+
+  double worst_baseline = 0., worst_fma = 0.;
+  bool avx_bitwise = true, fma_close = true, dispatch_ok = true, all_solved = true;
+  std::size_t fma_differs = 0; // systems where FMA changes bits (the comparison is not vacuous)
+  for(const System& s : systems)
+  {
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(s.M);
+    const double condition = svd.singularValues()(0) / svd.singularValues()(s.cols - 1);
+    const Eigen::VectorXd reference = s.M.householderQr().solve(s.b);
+    std::vector<double> ref(reference.data(), reference.data() + s.cols), base, avx, fma, dispatched;
+
+    all_solved = all_solved && solve(&WI::householder_kernel, s, base);
+    worst_baseline = (std::max)(worst_baseline, relative_difference(base, ref) / condition);
+    all_solved = all_solved && solve(&WI::householder_least_squares, s, dispatched);
+#ifdef CGAL_WAVEJETS_AVX_DISPATCH
+    if(has_avx)
+    {
+      all_solved = all_solved && solve(&WI::householder_avx, s, avx);
+      avx_bitwise = avx_bitwise && avx == base;
+    }
+    if(has_fma)
+    {
+      all_solved = all_solved && solve(&WI::householder_fma, s, fma);
+      const double d = relative_difference(fma, base);
+      worst_fma = (std::max)(worst_fma, d / condition);
+      fma_close = fma_close && d <= 1e-12 * condition;
+      fma_differs += fma != base;
+    }
+#endif
+    const std::vector<double>& best = has_fma ? fma : has_avx ? avx : base;
+    dispatch_ok = dispatch_ok && dispatched == best;
+  }
+  const std::string n = std::to_string(systems.size()) + " systems";
+  check(all_solved, "every variant solves the " + n + " (full rank)");
+  check(worst_baseline <= 1e-13, "baseline vs Eigen HouseholderQR: " + sci(worst_baseline) +
+                                   " relative / condition number (<= 1e-13)");
+  if(has_avx) check(avx_bitwise, "AVX clone == baseline, bitwise, on " + n);
+  else std::cout << "[SKIP] AVX clone: the processor has no AVX" << std::endl;
+  if(has_fma) check(fma_close, "AVX2 + FMA clone vs baseline: " + sci(worst_fma) +
+                                 " relative / condition number (<= 1e-12); bits differ on " +
+                                 std::to_string(fma_differs) + " of " + n);
+  else std::cout << "[SKIP] AVX2 + FMA clone: the processor has no AVX2 + FMA" << std::endl;
+  check(dispatch_ok, std::string("the dispatch picks the ") + (has_fma ? "AVX2 + FMA" : has_avx ? "AVX" : "baseline") +
+                       " kernel (bitwise equal to it)");
+
+  // A rank-deficient system (two equal columns) is reported by every variant.
+  System deficient = systems.back();
+  deficient.M.col(3) = deficient.M.col(1);
+  std::vector<double> c;
+  bool reported = !solve(&WI::householder_kernel, deficient, c) && !solve(&WI::householder_least_squares, deficient, c);
+#ifdef CGAL_WAVEJETS_AVX_DISPATCH
+  if(has_avx) reported = reported && !solve(&WI::householder_avx, deficient, c);
+  if(has_fma) reported = reported && !solve(&WI::householder_fma, deficient, c);
+#endif
+  check(reported, "a rank-deficient system is reported by every variant");
+
+  std::cout << checks - failures << " passed, " << failures << " failed" << std::endl;
+  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+}
