@@ -18,6 +18,26 @@
 #include <limits>
 
 namespace CGAL {
+namespace Wavejets {
+namespace internal {
+
+/// Direction along which the position filter moves a fitted point: its Wavejet normal (the final
+/// frame's n), or with `along_input` its normalized input normal turned to the side of n (so that the
+/// height d, measured along n, keeps its meaning whatever the input orientation). A zero or
+/// non-finite input normal falls back to n.
+inline Eigen::Vector3d motion_direction(const Fitted_point& fp, const std::vector<Eigen::Vector3d>& input_normals,
+                                        bool along_input)
+{
+  const Eigen::Vector3d& n = fp.fit.frame.n;
+  if(!along_input) return n;
+  const Eigen::Vector3d& m = input_normals[fp.index];
+  const double length = m.stableNorm();
+  if(!(length > 0) || !std::isfinite(length)) return n;
+  return (m.dot(n) < 0 ? -1. / length : 1. / length) * m;
+}
+
+} // namespace internal
+} // namespace Wavejets
 
 /*!
 \ingroup PkgWavejetsRef
@@ -55,6 +75,12 @@ points is reported.
     \cgalParamType{`std::size_t`, `>= 1`}
     \cgalParamDefault{4}
   \cgalParamNEnd
+  \cgalParamNBegin{degree_fitting}
+    \cgalParamDescription{\cgal's name of the order, as in `jet_estimate_normals()`: the same as
+                          `Wavejets::parameters::order` (if both are given, they must be equal)}
+    \cgalParamType{an integer, `>= 1`}
+    \cgalParamDefault{4}
+  \cgalParamNEnd
   \cgalParamNBegin{Wavejets::parameters::evaluation_radius}
     \cgalParamDescription{the radius s of a_0(s), in world units; clamped to Rf per point (0: Rf)}
     \cgalParamType{`double` (or `geom_traits::FT`), finite and `>= 0`}
@@ -73,17 +99,26 @@ points is reported.
     \cgalParamDefault{`false`}
     \cgalParamExtra{needs a `normal_map` (read-write)}
   \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::move_along_input_normals}
+    \cgalParamDescription{move each point along its input normal m (normalized; its orientation does not
+                          matter) instead of its Wavejet normal n, by the same signed height:
+                          p' = p + d m', with d = f_{0,0} - 2 pi (gain - 1) a_0(s) / Rf^2 as above and
+                          m' = m / |m| turned to the side of n (m'.n >= 0), so |p' - p| and the clamp are
+                          those of the default mode and m = n gives the default result. This is the
+                          paper's pipeline for noisy inputs (Figure 12): filter the normals first with
+                          `wavejet_enhance_normals()` at gain 0, then move the points along them, for a
+                          stable motion direction. A point whose input normal is zero or not finite moves
+                          along n}
+    \cgalParamType{`bool`}
+    \cgalParamDefault{`false`}
+    \cgalParamExtra{needs a `normal_map`}
+  \cgalParamNEnd
 \cgalNamedParamsEnd
 
-  \cgalParamNBegin{degree_fitting}
-    \cgalParamDescription{\cgal's name of the order, as in `jet_estimate_normals()`: the same as
-                          `Wavejets::parameters::order` (if both are given, they must be equal)}
-    \cgalParamType{an integer, `>= 1`}
-    \cgalParamDefault{4}
-  \cgalParamNEnd
 \return a `Wavejets::Processing_report`, with the number of clamped points.
 \throws std::invalid_argument on the conditions of `wavejet_estimate_normals()`, a non-finite gain or |gain| > 1e100,
-a `maximum_displacement` that is not positive, or `write_normals` without a normal map.
+a `maximum_displacement` that is not positive, or `write_normals` or `move_along_input_normals`
+without a normal map.
 */
 template <typename ConcurrencyTag, typename PointRange,
           typename NamedParameters = parameters::Default_named_parameters>
@@ -106,6 +141,8 @@ Wavejets::Processing_report wavejet_enhance_positions(PointRange& points, unsign
   require(default_clamp || clamp > 0, fn, "maximum_displacement must be > 0 (infinity switches the clamp off)");
   const bool with_normals = choose_parameter(get_parameter(np, wnp::write_normals), false);
   require(!with_normals || has_normal_map(points, np), fn, "write_normals needs a normal map");
+  const bool along_input = choose_parameter(get_parameter(np, wnp::move_along_input_normals), false);
+  require(!along_input || has_normal_map(points, np), fn, "move_along_input_normals needs a normal map");
   const Input input(points, np, true);
 
   const double two_pi = 2. * 3.14159265358979323846;
@@ -120,7 +157,7 @@ Wavejets::Processing_report wavejet_enhance_positions(PointRange& points, unsign
       double d = Rf * (fp.coefficients[0] - two_pi * (gain - 1.) * a0);
       const double limit = default_clamp ? 0.5 * Rf : clamp;
       if(std::abs(d) > limit) { d = d > 0 ? limit : -limit; clamped[fp.index] = 1; }
-      motion[fp.index] = d * fp.fit.frame.n;
+      motion[fp.index] = d * motion_direction(fp, input.normals, along_input);
       if(with_normals) normals[fp.index] = surface_normal(fp);
     });
 

@@ -39,6 +39,7 @@ namespace Wavejets {
   X(seed_with_input_normals)     /* first fit in the plane orthogonal to the input normal       */ \
   X(restrict_to_consistent_normals) /* drop neighbors whose normal is > 90 deg from the center's */ \
   X(write_normals)               /* enhance_positions: also write the Wavejet normals           */ \
+  X(move_along_input_normals)    /* enhance_positions: move along the input normals             */ \
   X(fitted_map)                  /* writable bool map: true where a Wavejet was fitted          */ \
   X(mean_curvature_map)                                                                            \
   X(gaussian_curvature_map)                                                                        \
