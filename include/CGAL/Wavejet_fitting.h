@@ -331,10 +331,41 @@ public:
     return fit(begin, end, order, &hint);
   }
 
+  /*!
+  Hermite fit: fits the Wavejet to the points' heights and to the slopes their normals give
+  (see `Wavejets::Fitting_options::neighbor_normal_weight`, which weighs the two kinds of equations;
+  with a weight of 0 this is the plain fit). Every fit of the procedure (the first fit, the
+  tangent-plane re-fits, the robust passes) is the Hermite fit. The normals need not be unit nor
+  oriented; a normal that is not finite, zero, or makes more than about 78 degrees (cosine 0.2) with
+  the frame normal gives no slope equation. The first normal, the one at `*begin`, also orients the
+  frame as the `normal` of the other overload does (or seeds it, with `Wavejets::Normal_use::SEED_FRAME`),
+  unless it is zero or not finite. The adaptive order still counts points, not equations.
+  \tparam InputIterator iterator with value type `Data_kernel::Point_3`.
+  \tparam NormalIterator iterator with value type `Data_kernel::Vector_3`, over as many normals as there are points.
+  \param begin first point of the range: the point where the Wavejet is computed.
+  \param end past-the-end iterator of the range.
+  \param normals_begin normal of `*begin`, then of each following point, in the same order.
+  \param order requested order K (see above).
+  */
+  template <class InputIterator, class NormalIterator>
+  Wavejet_form operator()(InputIterator begin, InputIterator end, NormalIterator normals_begin, std::size_t order)
+  {
+    m_normals.clear();
+    for(InputIterator it = begin; it != end; ++it, ++normals_begin)
+    {
+      const typename Data_kernel::Vector_3& m = *normals_begin;
+      m_normals.emplace_back(to_double(m.x()), to_double(m.y()), to_double(m.z()));
+    }
+    if(m_normals.empty() || !m_normals.front().allFinite() || !(m_normals.front().squaredNorm() > 0.))
+      return fit(begin, end, order, nullptr, m_normals.data());
+    const Eigen::Vector3d hint = m_normals.front();
+    return fit(begin, end, order, &hint, m_normals.data());
+  }
+
   /// Condition number (ratio of the largest to the smallest singular value) of the kept fit's
   /// least-squares matrix: one row per point, coordinates (q - p)/Rf in the form's final frame,
   /// columns r^k, r^k cos(n theta), r^k sin(n theta) (rows scaled by the square roots of the weights
-  /// of the last IRLS pass, if any). Meaningful after a successful fit; 0 before any fit, or when
+  /// of the last IRLS pass, if any; a Hermite fit adds its slope rows, weighted). Meaningful after a successful fit; 0 before any fit, or when
   /// `options().compute_condition_number` is false. It is not comparable with
   /// `Monge_via_jet_fitting::condition_number()`, which is that of CGAL's own preconditioned monomial system.
   FT condition_number() const { return FT(m_result.condition_number); }
@@ -353,7 +384,8 @@ public:
 
 private:
   template <class InputIterator>
-  Wavejet_form fit(InputIterator begin, InputIterator end, std::size_t order, const Eigen::Vector3d* hint)
+  Wavejet_form fit(InputIterator begin, InputIterator end, std::size_t order, const Eigen::Vector3d* hint,
+                   const Eigen::Vector3d* neighbor_normals = nullptr)
   {
     CGAL_precondition(order >= 1);
     Wavejet_form form;
@@ -375,7 +407,7 @@ private:
       form.m_status = Wavejets::Fit_status::NON_FINITE_INPUT;
       return form;
     }
-    m_fitter.fit(m_offsets.data(), m_offsets.size(), order, m_options, hint, m_result);
+    m_fitter.fit(m_offsets.data(), m_offsets.size(), order, m_options, hint, m_result, neighbor_normals);
     form.m_status = m_result.status;
     form.m_number_of_points = m_result.number_of_points;
     if(!m_result.success())
@@ -432,7 +464,7 @@ private:
   Wavejets::Fitting_options m_options;
   Wavejets::internal::Fitter m_fitter;
   Wavejets::internal::Fit_result m_result;
-  std::vector<Eigen::Vector3d> m_offsets;
+  std::vector<Eigen::Vector3d> m_offsets, m_normals;
 };
 
 } // namespace CGAL

@@ -129,6 +129,34 @@ normal read from `normal_map`.
     \cgalParamType{`bool`}
     \cgalParamDefault{`false`}
   \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::use_neighbor_normals}
+    \cgalParamDescription{Hermite fit: fit every Wavejet to the neighbors' heights and to the slopes their normals
+                          give (two equations per neighbor normal; see `Wavejets::Fitting_options::neighbor_normal_weight`).
+                          The normals are those read from `normal_map` when the function reads them (the
+                          functions that take input normals; here, with `orient_with_input_normals`,
+                          `seed_with_input_normals` or `restrict_to_consistent_normals`); otherwise the function
+                          first estimates them itself, with a pass of this function's plain fit (same
+                          neighborhoods, order and weights, order-2 tangent-plane search with 2 re-fits):
+                          one call, two passes over the points (the `callback` sees both). Normals may be
+                          unoriented (their sign does not change the equations) and noisy. On noisy scans
+                          this makes curvature several times more precise than the plain fit (see the
+                          accuracy tables against Ponca's APSS in benchmark/Wavejets/accuracy_ponca.md)}
+    \cgalParamType{`bool`}
+    \cgalParamDefault{`false`}
+  \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::neighbor_normal_weight}
+    \cgalParamDescription{weight w of the slope equations of the Hermite fit against the height equations: with
+                          coordinates divided by the neighborhood radius Rf, a slope error of 1 (radian) weighs
+                          as much as a height error of Rf / w}
+    \cgalParamType{`double`, finite and > 0}
+    \cgalParamDefault{1}
+  \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::compact_weights}
+    \cgalParamDescription{weight the equations of each neighbor q by the smooth compact kernel
+                          (1 - |q - p|^2 / Rf^2)^2 instead of 1 (also in the Hermite fit)}
+    \cgalParamType{`bool`}
+    \cgalParamDefault{`false`}
+  \cgalParamNEnd
   \cgalParamNBegin{Wavejets::parameters::fitted_map}
     \cgalParamDescription{a property map receiving, for every point, whether a Wavejet was fitted there
                           (not written if the `callback` interrupts the computation)}

@@ -38,6 +38,9 @@ namespace Wavejets {
   X(orient_with_input_normals)   /* estimate_normals: keep the input normals' orientation       */ \
   X(seed_with_input_normals)     /* first fit in the plane orthogonal to the input normal       */ \
   X(restrict_to_consistent_normals) /* drop neighbors whose normal is > 90 deg from the center's */ \
+  X(use_neighbor_normals)        /* Hermite fit to heights and the neighbors' normals' slopes   */ \
+  X(neighbor_normal_weight)      /* weight of the slope rows of the Hermite fit; default 1      */ \
+  X(compact_weights)             /* rows weighted by (1 - (d/Rf)^2)^2; default false            */ \
   X(write_normals)               /* enhance_positions: also write the Wavejet normals           */ \
   X(move_along_input_normals)    /* enhance_positions: move along the input normals             */ \
   X(fitted_map)                  /* writable bool map: true where a Wavejet was fitted          */ \

@@ -99,6 +99,57 @@ inline void evaluate_basis_columns(const double* x, const double* y, std::size_t
   }
 }
 
+/// Gradient of the basis at M points: Gx and Gy receive d/dx and d/dy of the B columns of
+/// evaluate_basis_columns(), in the same layout (column stride P >= M, padding rows set to zero);
+/// V must hold the basis values at the same points (evaluate_basis_columns(x, y, M, P, order, V)).
+/// Same recurrences, differentiated: d/dx (x + i y)^k = k (x + i y)^{k-1}, d/dy (x + i y)^k =
+/// i k (x + i y)^{k-1}, and d/dx (r^2 g) = 2 x g + r^2 dg/dx (likewise for y).
+inline void evaluate_basis_gradient_columns(const double* x, const double* y, std::size_t M, std::size_t P,
+                                            std::size_t order, const double* V, double* Gx, double* Gy)
+{
+  for(std::size_t l = 0; l < P; ++l) Gx[l] = Gy[l] = 0.;
+  for(std::size_t k = 1; k <= order; ++k)
+  {
+    const std::size_t o = order_offset(k);
+    if(k >= 2)
+    {
+      const std::size_t o2 = order_offset(k - 2);
+      for(std::size_t j = 0; j + 1 < k; ++j)
+      {
+        const double* g = V + (o2 + j) * P;
+        const double* gx = Gx + (o2 + j) * P;
+        const double* gy = Gy + (o2 + j) * P;
+        double* cx = Gx + (o + j) * P;
+        double* cy = Gy + (o + j) * P;
+        for(std::size_t l = 0; l < M; ++l)
+        {
+          const double r2 = x[l] * x[l] + y[l] * y[l];
+          cx[l] = 2. * x[l] * g[l] + r2 * gx[l];
+          cy[l] = 2. * y[l] * g[l] + r2 * gy[l];
+        }
+        for(std::size_t l = M; l < P; ++l) cx[l] = cy[l] = 0.;
+      }
+    }
+    // (x + i y)^{k-1}: the last two columns of order k-1, or 1 + 0 i for k = 1.
+    const double* pre = k == 1 ? V : V + (order_offset(k - 1) + k - 2) * P;
+    const double* pim = k == 1 ? nullptr : V + (order_offset(k - 1) + k - 1) * P;
+    double* rx = Gx + (o + k - 1) * P;
+    double* ix = Gx + (o + k) * P;
+    double* ry = Gy + (o + k - 1) * P;
+    double* iy = Gy + (o + k) * P;
+    const double dk = double(k);
+    for(std::size_t l = 0; l < M; ++l)
+    {
+      const double re = pre[l], im = pim ? pim[l] : 0.;
+      rx[l] = dk * re;
+      ix[l] = dk * im;
+      ry[l] = -dk * im;
+      iy[l] = dk * re;
+    }
+    for(std::size_t l = M; l < P; ++l) rx[l] = ix[l] = ry[l] = iy[l] = 0.;
+  }
+}
+
 /// Enclosed-area coefficient a_n(s) = sum_{k >= max(|n|, k_min), k = n mod 2} f_{k,n} s^{k+2}/(k+2),
 /// in the unit system of `c` and `s`. `k_min` lets the filters skip the k = 0 (offset) or k = 1 (tilt) term.
 inline std::complex<double> enclosed_area(const double* c, std::size_t order, int n, double s, int k_min = 0)

@@ -29,6 +29,7 @@
 #include <complex>
 #include <cstddef>
 #include <limits>
+#include <utility>
 #include <vector>
 
 namespace CGAL {
@@ -67,13 +68,20 @@ class Fitter
 public:
   /// Fits a Wavejet to the points `offsets[0..L-1]` given relative to the query point p (p itself,
   /// if part of the neighborhood, appears as a zero offset). `hint_normal` (may be null) orients
-  /// the frame, or seeds it when `options.normal_use == SEED_FRAME`.
+  /// the frame, or seeds it when `options.normal_use == SEED_FRAME`. `neighbor_normals` (may be
+  /// null) holds a normal per offset (any length and sign; non-finite or zero ones are skipped):
+  /// with `options.neighbor_normal_weight > 0`, every fit is the Hermite fit to heights and slopes.
   Fit_status fit(const Eigen::Vector3d* offsets, std::size_t L, std::size_t requested_order,
-                 const Fitting_options& options, const Eigen::Vector3d* hint_normal, Fit_result& out)
+                 const Fitting_options& options, const Eigen::Vector3d* hint_normal, Fit_result& out,
+                 const Eigen::Vector3d* neighbor_normals = nullptr)
   {
     out = Fit_result();
     out.number_of_points = L;
     want_condition_ = options.compute_condition_number;
+    normal_weight_ = options.neighbor_normal_weight > 0. && std::isfinite(options.neighbor_normal_weight)
+                       ? options.neighbor_normal_weight : 0.;
+    normals_ = normal_weight_ > 0. ? neighbor_normals : nullptr;
+    compact_ = options.compact_weights;
     if(requested_order < 1)
       return fail(out, Fit_status::TOO_FEW_POINTS);
     if(hint_normal && !hint_normal->allFinite())
@@ -312,6 +320,8 @@ private:
   bool fit_in_frame(std::size_t L, std::size_t order, const Frame& frame, std::size_t robust_iterations,
                     std::vector<double>& c)
   {
+    if(normals_ || compact_)
+      return fit_in_frame_weighted(L, order, frame, robust_iterations, c);
     const std::size_t B = number_of_coefficients(order);
     const std::size_t P = padded_rows(L);
     const bool keep_system = robust_iterations > 0;
@@ -363,6 +373,130 @@ private:
     return true;
   }
 
+  // Neighbors whose normal m is nearly parallel to the fitting plane give no slope rows: their
+  // slope -(m.u)/(m.n) is huge and meaningless for a height field over the plane.
+  static constexpr double minimum_normal_cosine = 0.2;
+
+  // fit_in_frame() with compact weights and/or the Hermite rows (Fitting_options::neighbor_normal_weight):
+  // rows 0..L-1 are the heights, rows L..L+M-1 and L+M..L+2M-1 the slopes dz/dx and dz/dy at the M
+  // points whose normal passes the test above. The (unweighted) system is kept in system_, each row r
+  // is scaled by base_[r] (sqrt of the compact weight of its point, times the normal weight for slope
+  // rows). IRLS: Tukey biweight on each kind of row with its own scale (1.4826 MAD); a point gets the
+  // smallest weight of its rows, on all of its rows (an outlier is one in position and normal).
+  bool fit_in_frame_weighted(std::size_t L, std::size_t order, const Frame& frame, std::size_t robust_iterations,
+                             std::vector<double>& c)
+  {
+    const std::size_t B = number_of_coefficients(order);
+    slope_points_.clear();
+    slope_targets_.clear();
+    if(normals_)
+      for(std::size_t l = 0; l < L; ++l)
+      {
+        const Eigen::Vector3d& m = normals_[l];
+        if(!m.allFinite())
+          continue;
+        const double mn = m.dot(frame.n);
+        if(!(std::abs(mn) >= minimum_normal_cosine * m.norm()) || mn == 0.)
+          continue;
+        slope_points_.push_back(l);
+        slope_targets_.emplace_back(-m.dot(frame.u) / mn, -m.dot(frame.v) / mn);
+      }
+    const std::size_t M = slope_points_.size(), R = L + 2 * M;
+    const std::size_t P = padded_rows(R);
+    system_.resize(P * (B + 1));
+    double* A = system_.data();
+    double* h = A + B * P;
+    xs_.resize(P);
+    ys_.resize(P);
+    base_.resize(R);
+    for(std::size_t l = 0; l < L; ++l)
+    {
+      const Eigen::Vector3d& d = scaled_[l];
+      xs_[l] = d.dot(frame.u);
+      ys_[l] = d.dot(frame.v);
+      h[l] = d.dot(frame.n);
+      base_[l] = compact_ ? (std::max)(1. - d.squaredNorm(), 0.) : 1.; // sqrt of (1 - |d|^2)^2
+    }
+    for(std::size_t l = L; l < P; ++l) xs_[l] = ys_[l] = h[l] = 0.;
+    evaluate_basis_columns(xs_.data(), ys_.data(), L, P, order, A);
+    if(M > 0)
+    {
+      const std::size_t PM = padded_rows(M);
+      slope_x_.resize(PM);
+      slope_y_.resize(PM);
+      for(std::size_t m = 0; m < M; ++m)
+      {
+        slope_x_[m] = xs_[slope_points_[m]];
+        slope_y_[m] = ys_[slope_points_[m]];
+      }
+      for(std::size_t m = M; m < PM; ++m) slope_x_[m] = slope_y_[m] = 0.;
+      gradient_.resize(3 * PM * B);
+      double* V = gradient_.data();
+      double* Gx = V + PM * B;
+      double* Gy = Gx + PM * B;
+      evaluate_basis_columns(slope_x_.data(), slope_y_.data(), M, PM, order, V);
+      evaluate_basis_gradient_columns(slope_x_.data(), slope_y_.data(), M, PM, order, V, Gx, Gy);
+      for(std::size_t b = 0; b < B; ++b)
+        for(std::size_t m = 0; m < M; ++m)
+        {
+          A[b * P + L + m] = Gx[b * PM + m];
+          A[b * P + L + M + m] = Gy[b * PM + m];
+        }
+      for(std::size_t m = 0; m < M; ++m)
+      {
+        h[L + m] = slope_targets_[m].first;
+        h[L + M + m] = slope_targets_[m].second;
+        base_[L + m] = base_[L + M + m] = normal_weight_ * base_[slope_points_[m]];
+      }
+    }
+    c.resize(B);
+    if(!solve_weighted(R, B, base_.data(), c))
+      return false;
+
+    for(std::size_t it = 0; it < robust_iterations; ++it)
+    {
+      residual_.assign(R, 0.);
+      for(std::size_t b = 0; b < B; ++b)
+      {
+        const double* column = A + b * P;
+        for(std::size_t r = 0; r < R; ++r) residual_[r] += column[r] * c[b];
+      }
+      for(std::size_t r = 0; r < R; ++r) residual_[r] = std::abs(h[r] - residual_[r]);
+      const double height_cutoff = 4.685 * 1.4826 * median(residual_.data(), L);
+      const double slope_cutoff = M > 0 ? 4.685 * 1.4826 * median(residual_.data() + L, 2 * M) : 0.;
+      const bool reweight_heights = height_cutoff > 4.685 * 1e-14, reweight_slopes = slope_cutoff > 4.685 * 1e-14;
+      if(!reweight_heights && !reweight_slopes)
+        break; // (near) exact fit: nothing to reweight
+      auto tukey = [](double residual, double cutoff) { // sqrt of the biweight (1 - t^2)^2
+        const double t = residual / cutoff;
+        return t < 1. ? 1. - t * t : 0.;
+      };
+      weights_.resize(R);
+      for(std::size_t l = 0; l < L; ++l)
+        weights_[l] = reweight_heights ? tukey(residual_[l], height_cutoff) : 1.;
+      if(reweight_slopes)
+        for(std::size_t m = 0; m < M; ++m)
+        {
+          double& w = weights_[slope_points_[m]];
+          w = (std::min)(w, (std::min)(tukey(residual_[L + m], slope_cutoff), tukey(residual_[L + M + m], slope_cutoff)));
+        }
+      for(std::size_t m = 0; m < M; ++m) weights_[L + m] = weights_[L + M + m] = weights_[slope_points_[m]];
+      for(std::size_t r = 0; r < R; ++r) weights_[r] *= base_[r];
+      if(!solve_weighted(R, B, weights_.data(), trial_solution_))
+        break;
+      c.assign(trial_solution_.begin(), trial_solution_.end());
+    }
+    return true;
+  }
+
+  // Median of values[0..n-1] (the upper one for even n, as the plain IRLS); n > 0.
+  double median(const double* values, std::size_t n)
+  {
+    sorted_.assign(values, values + n);
+    std::nth_element(sorted_.begin(), sorted_.begin() + n / 2, sorted_.end());
+    return sorted_[n / 2];
+  }
+
   // Least squares on a copy of system_ in work_, with rows scaled by sqrt_weights (null: unweighted).
   bool solve_weighted(std::size_t L, std::size_t B, const double* sqrt_weights, std::vector<double>& c)
   {
@@ -399,8 +533,13 @@ private:
     return true;
   }
 
-  bool want_condition_ = false;
-  double condition_ = 0.;
+  bool want_condition_ = false, compact_ = false;
+  double condition_ = 0., normal_weight_ = 0.;
+  const Eigen::Vector3d* normals_ = nullptr;
+  std::vector<std::size_t> slope_points_;
+  std::vector<std::pair<double, double> > slope_targets_;
+  Aligned_vector slope_x_, slope_y_, gradient_;
+  std::vector<double> base_;
   std::vector<Eigen::Vector3d> scaled_;
   Aligned_vector system_, work_, xs_, ys_, householder_scratch_; // read by the vectorized kernels
   std::vector<double> residual_, sorted_, weights_;

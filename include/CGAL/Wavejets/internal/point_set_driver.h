@@ -63,6 +63,7 @@ struct Driver_settings
   Fitting_options fitting;
   bool use_input_normals = false;       // orient (or seed) the frames with the input normals
   bool restrict_to_consistent_normals = false;
+  bool use_neighbor_normals = false;    // Hermite fit (normals: the input's, or estimated first)
 };
 
 /// Reads the settings shared by all functions. `default_order` and `default_tangent_plane_order`
@@ -136,6 +137,12 @@ Driver_settings read_driver_settings(unsigned int k, const NP& np, std::size_t d
   s.fitting.compute_condition_number = false;
   s.restrict_to_consistent_normals =
     choose_parameter(get_parameter(np, Wavejets::internal_np::restrict_to_consistent_normals), false);
+  s.use_neighbor_normals = choose_parameter(get_parameter(np, Wavejets::internal_np::use_neighbor_normals), false);
+  s.fitting.neighbor_normal_weight =
+    to_double(choose_parameter(get_parameter(np, Wavejets::internal_np::neighbor_normal_weight), 1.));
+  require(std::isfinite(s.fitting.neighbor_normal_weight) && s.fitting.neighbor_normal_weight > 0, fn,
+          "neighbor_normal_weight must be finite and > 0");
+  s.fitting.compact_weights = choose_parameter(get_parameter(np, Wavejets::internal_np::compact_weights), false);
   return s;
 }
 
@@ -198,6 +205,22 @@ struct Fitted_point
   const double* coefficients; // rescaled units (see Fitter::coefficients())
 };
 
+/// Unit normal of the Wavejet surface at the origin, in the final frame (tilted by the residual f_{1,+-1}).
+inline Eigen::Vector3d surface_normal(const Fitted_point& fp)
+{
+  const Frame& f = fp.fit.frame;
+  if(fp.fit.order < 1) return f.n;
+  return (f.n - fp.coefficients[1] * f.u - fp.coefficients[2] * f.v).normalized();
+}
+
+/// Kernel of the normal-estimation pass of the Hermite pipeline (a named type: a lambda in
+/// fit_each_point would make every instantiation instantiate a new one, without end).
+struct Normal_writer
+{
+  std::vector<Eigen::Vector3d>* normals;
+  void operator()(const Fitted_point& fp) const { (*normals)[fp.index] = surface_normal(fp); }
+};
+
 /// Per-point statuses of a run, and the summary.
 struct Driver_run
 {
@@ -219,8 +242,33 @@ Driver_run fit_each_point(const Input& input, const Driver_settings& settings,
   std::vector<unsigned char> reduced(N, 0);
   if(N == 0) return run;
 
-  const Neighbor_query query(input.points, input.finite, ConcurrencyTag());
   const bool have_normals = !input.normals.empty();
+  // Hermite fit (use_neighbor_normals): the neighbors' normals are the input normals when they were
+  // read, else they are estimated first by a pass of wavejet_estimate_normals' fit (same
+  // neighborhoods, order and weights; tangent-plane search at order 2 with 2 re-fits; unoriented,
+  // which the slope equations do not mind). Points without a normal (unfitted) give no slope rows.
+  std::vector<Eigen::Vector3d> estimated_normals;
+  const std::vector<Eigen::Vector3d>* neighbor_normals = have_normals ? &input.normals : nullptr;
+  if(settings.use_neighbor_normals && !have_normals)
+  {
+    Driver_settings first = settings;
+    first.use_neighbor_normals = false;
+    first.fitting.tangent_plane_order = 2;
+    first.fitting.correction_iterations = 2;
+    first.fitting.curvature_frame = Curvature_frame::TANGENT_FRAME;
+    estimated_normals.assign(N, Eigen::Vector3d::Zero());
+    const Driver_run pass = fit_each_point<ConcurrencyTag>(input, first, callback, Normal_writer{&estimated_normals});
+    if(pass.report.interrupted)
+    {
+      run.report.interrupted = true;
+      return run;
+    }
+    neighbor_normals = &estimated_normals;
+  }
+  if(!settings.use_neighbor_normals)
+    neighbor_normals = nullptr;
+
+  const Neighbor_query query(input.points, input.finite, ConcurrencyTag());
   // Points are visited in the tree's spatial order (each point's result does not depend on it).
   const std::vector<std::size_t> order = query.processing_order();
   CGAL_assertion(order.size() == N);
@@ -237,7 +285,7 @@ Driver_run fit_each_point(const Input& input, const Driver_settings& settings,
     Fit_result fit;
     std::vector<std::size_t> neighbors;
     std::vector<std::pair<double, std::size_t> > scratch;
-    std::vector<Eigen::Vector3d> offsets;
+    std::vector<Eigen::Vector3d> offsets, normals_of_offsets;
     const std::size_t end = (std::min)(begin + chunk_size, N);
     for(std::size_t position = begin; position < end; ++position)
     {
@@ -256,15 +304,18 @@ Driver_run fit_each_point(const Input& input, const Driver_settings& settings,
       query.neighbors(i, settings.k, settings.neighbor_radius, neighbors, scratch);
       const Eigen::Vector3d p = input.position(i);
       offsets.assign(1, Eigen::Vector3d::Zero()); // the query point, first
+      if(neighbor_normals) normals_of_offsets.assign(1, (*neighbor_normals)[i]);
       for(std::size_t j : neighbors)
       {
         if(settings.restrict_to_consistent_normals && hint && !(input.normals[j].dot(normal) >= 0.))
           continue;
         offsets.push_back(input.position(j) - p);
+        if(neighbor_normals) normals_of_offsets.push_back((*neighbor_normals)[j]);
       }
       Fitting_options options = settings.fitting;
       options.neighborhood_radius = settings.neighbor_radius;
-      fitter.fit(offsets.data(), offsets.size(), settings.order, options, hint, fit);
+      fitter.fit(offsets.data(), offsets.size(), settings.order, options, hint, fit,
+                 neighbor_normals ? normals_of_offsets.data() : nullptr);
       status[i] = (unsigned char)(fit.status);
       if(!fit.success()) continue;
       reduced[i] = fit.order < settings.order;
@@ -330,14 +381,6 @@ std::function<bool(double)> read_callback(const NP& np)
 
 /// Evaluation radius in units of Rf: s / Rf, clamped to 1 (a_n(s) extrapolates beyond Rf); 1 if s <= 0.
 inline double relative_evaluation_radius(double s, double Rf) { return s > 0 ? (std::min)(s / Rf, 1.) : 1.; }
-
-/// Unit normal of the Wavejet surface at the origin, in the final frame (tilted by the residual f_{1,+-1}).
-inline Eigen::Vector3d surface_normal(const Fitted_point& fp)
-{
-  const Frame& f = fp.fit.frame;
-  if(fp.fit.order < 1) return f.n;
-  return (f.n - fp.coefficients[1] * f.u - fp.coefficients[2] * f.v).normalized();
-}
 
 } // namespace internal
 } // namespace Wavejets
