@@ -4,6 +4,7 @@
 // Run `wavejets --help` or `wavejets <command> --help` for the flags.
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Point_set_3.h>
+#include <CGAL/Wavejets/internal/cgal_compatibility.h> // find_property_map: CGAL 5.5 and 6
 #include <CGAL/Point_set_3/IO.h>
 #include <CGAL/Wavejets/version.h>
 #include <CGAL/compute_average_spacing.h>
@@ -606,10 +607,10 @@ void drop_property(Point_set& points, const std::string& name)
 {
   bool found;
   Point_set::Property_map<float> f;
-  std::tie(f, found) = points.property_map<float>(name);
+  std::tie(f, found) = CGAL::Wavejets::internal::find_property_map<float>(points, name);
   if(found) points.remove_property_map(f);
   Point_set::Property_map<int> i;
-  std::tie(i, found) = points.property_map<int>(name);
+  std::tie(i, found) = CGAL::Wavejets::internal::find_property_map<int>(points, name);
   if(found) points.remove_property_map(i);
 }
 
@@ -787,10 +788,10 @@ wavejets_demo::Cloud to_cloud(const std::string& path, const Options& o, Progres
   if(!o.color_by.empty()) {
     bool found;
     Point_set::Property_map<double> d;
-    std::tie(d, found) = points.property_map<double>(o.color_by);
+    std::tie(d, found) = CGAL::Wavejets::internal::find_property_map<double>(points, o.color_by);
     Point_set::Property_map<float> f;
     if(!found) {
-      std::tie(f, found) = points.property_map<float>(o.color_by);
+      std::tie(f, found) = CGAL::Wavejets::internal::find_property_map<float>(points, o.color_by);
       if(!found) throw File_error(path + ": has no scalar property '" + o.color_by + "'");
       for(Point_set::Index i : points) c.scalar.push_back(f[i]);
     } else

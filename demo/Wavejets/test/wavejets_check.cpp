@@ -13,6 +13,7 @@
 //     FILE is a WIDTH x HEIGHT PNG with at least 1% of its pixels not background.
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Point_set_3.h>
+#include <CGAL/Wavejets/internal/cgal_compatibility.h> // find_property_map: CGAL 5.5 and 6
 #include <CGAL/Point_set_3/IO.h>
 #include <CGAL/Search_traits_3.h>
 #include <CGAL/Orthogonal_k_neighbor_search.h>
@@ -50,7 +51,7 @@ int main(int argc, char** argv)
     if(in.size() != out.size())
       return fail("point count " + std::to_string(out.size()) + " != input " + std::to_string(in.size()));
     if(!out.has_normal_map()) return fail("no normals in the output");
-    const auto fitted = out.property_map<unsigned char>("fitted");
+    const auto fitted = CGAL::Wavejets::internal::find_property_map<unsigned char>(out, "fitted");
     double worst = 0.;
     std::size_t nonunit = 0;
     for(std::size_t i = 0; i < in.size(); ++i) {
@@ -63,8 +64,8 @@ int main(int argc, char** argv)
       return fail("point moved by " + std::to_string(worst) + " > " + std::to_string(tolerance) + " (order lost?)");
     if(nonunit > 0) return fail(std::to_string(nonunit) + " new normals are not unit vectors");
     for(int p = 5; p < argc; ++p) {
-      const bool as_double = out.property_map<double>(argv[p]).second;
-      const bool as_uchar = out.property_map<unsigned char>(argv[p]).second;
+      const bool as_double = CGAL::Wavejets::internal::find_property_map<double>(out, argv[p]).second;
+      const bool as_uchar = CGAL::Wavejets::internal::find_property_map<unsigned char>(out, argv[p]).second;
       if(!as_double && !as_uchar) return fail(std::string("property ") + argv[p] + " missing");
     }
     std::cout << "OK: " << out.size() << " points in order (max motion " << worst << ")" << std::endl;

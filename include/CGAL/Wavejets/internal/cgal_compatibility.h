@@ -20,12 +20,16 @@
 //   (`is_default_parameter` and `Point_set_3::has_normal_map()`), identically on every version.
 // - The progress callback wrapper of Point_set_processing_3 (an internal header that has the
 //   same interface in 5.5 and 6.x, and that CGAL's own jet functions use).
+// - Looking up an existing property of a Point_set_3 by name: `property_map<T>(name)` returns a
+//   std::pair<map, bool> in CGAL 5.5 and a std::optional<map> in CGAL 6 (used by the tool).
 
 #include <CGAL/Named_function_parameters.h>
 #include <CGAL/Point_set_processing_3/internal/Callback_wrapper.h>
 #include <CGAL/version.h>
 
+#include <string>
 #include <type_traits>
+#include <utility>
 
 #if CGAL_VERSION_NR < 1050501000
 #error "CGAL Wavejets needs CGAL 5.5 or newer"
@@ -72,6 +76,21 @@ bool has_normal_map(const PointRange&, const NP&)
 /// Progress and interruption through the `callback` named parameter, for `ConcurrencyTag`.
 template <class ConcurrencyTag>
 using Callback_wrapper = CGAL::Point_set_processing_3::internal::Callback_wrapper<ConcurrencyTag>;
+
+/// The property `name` of value type `T` of a `Point_set_3` (include `CGAL/Point_set_3.h` first), and
+/// whether it exists, on every supported CGAL release.
+template <class T, class Point, class Vector>
+std::pair<typename CGAL::Point_set_3<Point, Vector>::template Property_map<T>, bool>
+find_property_map(const CGAL::Point_set_3<Point, Vector>& points, const std::string& name)
+{
+#if CGAL_VERSION_NR >= 1060000000
+  const auto map = points.template property_map<T>(name);
+  if(map) return std::make_pair(*map, true);
+  return std::make_pair(typename CGAL::Point_set_3<Point, Vector>::template Property_map<T>(), false);
+#else
+  return points.template property_map<T>(name);
+#endif
+}
 
 } // namespace internal
 } // namespace Wavejets
