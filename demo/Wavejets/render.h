@@ -1,9 +1,11 @@
-// Headless splat renderer of the `wavejets` tool: orthographic view, one fixed light, z-buffer,
-// shaded by the normals; PNG output through libpng. No CGAL here (plain arrays in and out).
+// Headless renderer of the `wavejets` tool: orthographic view, one fixed light, z-buffer; meshes as
+// triangles with smooth (per-vertex normal) shading, point sets as elliptical splats on their
+// tangent planes; PNG output through libpng. No CGAL here (plain arrays in and out).
 #ifndef WAVEJETS_DEMO_RENDER_H
 #define WAVEJETS_DEMO_RENDER_H
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -11,23 +13,32 @@
 namespace wavejets_demo {
 
 typedef std::array<double, 3> Vec3;
+/// Faces of a mesh (a polygon soup): vertex indices per face, any number of vertices per face.
+typedef std::vector<std::vector<std::size_t> > Faces;
 
-/// A point cloud to draw: positions, normals (any orientation; shading is two-sided) and an
-/// optional scalar per point (colored with a diverging map symmetric around 0).
+/// A point set or a mesh to draw: positions, normals (any orientation; shading is two-sided), an
+/// optional scalar per point (colored with a diverging map symmetric around 0), and faces: when
+/// there are faces, they are drawn (polygons as triangle fans) and the points are not.
 struct Cloud
 {
   std::vector<Vec3> points;
   std::vector<Vec3> normals;
   std::vector<double> scalar;   // empty: uniform material color
   double spacing = 0.;          // average point spacing (world units), sets the splat size
+  Faces faces;                  // empty: a point set, drawn as splats
 };
+
+/// Area-weighted vertex normals of a polygon soup (the Newell normal of each face, whose length is
+/// twice its area, summed at its vertices), unit length; zero where a vertex has no face of non-zero area.
+/// Faces refer to vertices by index (< points.size()).
+std::vector<Vec3> vertex_normals(const std::vector<Vec3>& points, const Faces& faces);
 
 struct View_options
 {
   int width = 800, height = 800;  // size of the whole image (all panels)
   Vec3 view = {{0., 0., 1.}};     // direction from the object toward the camera
   Vec3 up = {{0., 1., 0.}};       // world direction shown upward (projected)
-  double splat = 1.0;             // splat radius, in average spacings
+  double splat = 1.0;             // splat radius, in average spacings (point sets)
 };
 
 struct Image

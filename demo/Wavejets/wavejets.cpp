@@ -7,6 +7,9 @@
 #include <CGAL/Wavejets/internal/cgal_compatibility.h> // find_property_map: CGAL 5.5 and 6
 #include <CGAL/Point_set_3/IO.h>
 #include <CGAL/Wavejets/version.h>
+#include <CGAL/IO/OBJ.h>
+#include <CGAL/IO/OFF.h>
+#include <CGAL/IO/PLY.h>
 #include <CGAL/compute_average_spacing.h>
 #include <CGAL/mst_orient_normals.h>
 #include <CGAL/property_map.h>
@@ -92,25 +95,27 @@ const Command_info commands[] = {
   {"curvature", CURVATURE, "IN OUT.ply", "estimate mean/Gaussian/principal curvatures and principal directions as PLY scalar properties"},
   {"enhance-positions", POSITIONS, "IN OUT.ply", "move points along their normal: gain > 1 amplifies details, [0,1) flattens, < 0 inverts"},
   {"enhance-normals", NORMAL_FILTER, "IN OUT.ply", "tilt normals: gain > 1 exaggerates shading detail, 0 blurs, < 0 inverts, imaginary part twists"},
-  {"render", RENDER, "IN OUT.png | --compare A B OUT.png", "draw a point set (or two side by side) as shaded splats into a PNG"},
+  {"render", RENDER, "IN OUT.png | --compare A B OUT.png", "draw a mesh as shaded triangles, a point set as shaded splats (or two side by side) into a PNG"},
 };
 
 struct Flag_info { const char* name; const char* arg; unsigned commands; const char* help; };
 const Flag_info flags[] = {
-  {"--k", "N", FITS, "neighbors per fit (k nearest); with --radius: at most N nearest within the radius (0: no limit)"},
+  {"--k", "N", FITS, "neighbors per fit (k nearest: Rf per point follows the sampling); with --radius: at most N nearest within the radius (0: no limit)"},
   {"--radius", "R", FITS, "neighborhood radius in model units (points with too few neighbors inside are reported, not fitted)"},
   {"--radius-factor", "F", FITS, "without --k and --radius: radius = F x average spacing to the 6 nearest neighbors (default 4)"},
   {"--order", "K", FITS, "Wavejet order (default 2 for normals and curvature, 4 for the enhance commands)"},
   {"--gain", "G|RE,IM", POSITIONS | NORMAL_FILTER, "filter gain (default 2); enhance-normals takes a complex gain, e.g. 0,2 for 2i (twist)"},
   {"--evaluation-radius", "S", POSITIONS | NORMAL_FILTER, "radius s of the enclosed-area coefficients a_n(s), model units (default: the fit radius Rf)"},
   {"--max-displacement", "D|none", POSITIONS, "clamp each point's motion to D model units (default Rf/2 per point; none: no clamp)"},
+  {"--along-input-normals", "", POSITIONS, "move each point along its input normal instead of its Wavejet normal (for noisy inputs: first enhance-normals --gain 0, then this on its output)"},
+  {"--consistent-normals", "", POSITIONS | NORMAL_FILTER, "leave out the neighbors whose normal points more than 90 degrees away from the point's (the other side of a thin part, e.g. ears)"},
   {"--threads", "N", FITS | RENDER, "worker threads (default: all cores; 1: sequential, same results)"},
   {"--ascii", "", FITS, "write ASCII PLY (default: binary little-endian PLY, doubles)"},
   {"--width", "W", RENDER, "image width in pixels, all panels together (default 800, 1600 with --compare)"},
   {"--height", "H", RENDER, "image height in pixels (default 800)"},
   {"--view", "X,Y,Z", RENDER, "direction from the object toward the camera, orthographic (default 0,0,1)"},
   {"--up", "X,Y,Z", RENDER, "world direction shown upward (default 0,1,0)"},
-  {"--splat", "F", RENDER, "splat radius in average point spacings (default 1.2)"},
+  {"--splat", "F", RENDER, "splat radius of a point set in average point spacings (default 1.2)"},
   {"--color-by", "NAME", RENDER, "color by a scalar PLY property, blue < 0 < red (e.g. mean_curvature)"},
   {"--compare", "", RENDER, "render two point sets A and B side by side with the same camera"},
   {"--quiet", "", FITS | RENDER, "no progress bar and no summary (errors are still printed)"},
@@ -136,10 +141,12 @@ void print_flags(std::ostream& os, unsigned bit)
 void print_global_help(std::ostream& os)
 {
   os << "Usage: wavejets <command> IN OUT [flags]    (wavejets <command> --help for its flags)\n\n"
-        "Wavejet surface fitting and detail enhancement of point sets (CGAL Wavejets package).\n"
-        "IN: a point set, .ply .xyz .pwn or .off (vertices); normals are used when present and\n"
-        "estimated (Wavejet normals, oriented by a minimum spanning tree) when missing. OUT.ply keeps\n"
-        "every input point, in input order, with its normal and the input's other properties.\n\n"
+        "Wavejet surface fitting and detail enhancement of point sets and meshes (CGAL Wavejets package).\n"
+        "IN: a point set (.xyz .pwn, or .ply .off without faces) or a mesh (.off .obj, or .ply with faces;\n"
+        "faces are copied as they are). Normals are used when present; else a mesh takes those of its\n"
+        "faces and a point set's are estimated (Wavejet normals, oriented by a minimum spanning tree).\n"
+        "OUT.ply keeps every input point, in input order, with its normal and the input's other\n"
+        "properties, and a mesh's faces; a mesh can also be written as OUT.off or OUT.obj.\n\n"
         "Commands:\n";
   for(const Command_info& c : commands)
     os << "  " << std::left << std::setw(18) << c.name << " " << c.summary << "\n";
@@ -176,15 +183,17 @@ void print_command_help(std::ostream& os, const Command_info& c)
             "their normal.\n";
       break;
     case RENDER:
-      os << "Orthographic view, one fixed light, z-buffered splats shaded by the normals (estimated when\n"
-            "the input has none). The picture is framed on the bounding box of all inputs.\n";
+      os << "Orthographic view, one fixed light, z-buffered. A mesh is drawn as triangles with smooth shading\n"
+            "(its normals, else those of its faces); a point set as splats on the points' tangent planes, shaded\n"
+            "by the normals (estimated when the input has none). The picture is framed on the bounding box of\n"
+            "all inputs (one camera for both panels of --compare).\n";
       break;
   }
   os << "\nFlags:\n";
   print_flags(os, c.bit);
   if(c.bit & FITS)
-    os << "\nNeighborhoods: --k alone: k nearest neighbors; --radius (with or without --k): a fixed radius;\n"
-          "neither: a radius of --radius-factor x the average spacing.\n";
+    os << "\nNeighborhoods: --k alone: k nearest neighbors (for non-uniform samplings: Rf follows the density);\n"
+          "--radius (with or without --k): a fixed radius; neither: a radius of --radius-factor x the average spacing.\n";
 }
 
 // ------------------------------------------------------------------------------------------------
@@ -203,7 +212,7 @@ struct Options
   bool has_clamp = false;
   double max_displacement = 0.;          // infinity: no clamp
   int threads = 0;
-  bool ascii = false, quiet = false, compare = false;
+  bool ascii = false, quiet = false, compare = false, along_input_normals = false, consistent_normals = false;
   int width = 0, height = 800;
   wavejets_demo::Vec3 view = {{0., 0., 1.}}, up = {{0., 1., 0.}};
   double splat = 1.2;
@@ -322,6 +331,8 @@ Options parse_command_line(int argc, char** argv)
     }
     else if(a == "--threads") o.threads = int(parse_integer(a, value, 1, 4096));
     else if(a == "--ascii") o.ascii = true;
+    else if(a == "--along-input-normals") o.along_input_normals = true;
+    else if(a == "--consistent-normals") o.consistent_normals = true;
     else if(a == "--quiet") o.quiet = true;
     else if(a == "--width") o.width = int(parse_integer(a, value, 8, 16384));
     else if(a == "--height") o.height = int(parse_integer(a, value, 8, 16384));
@@ -340,7 +351,8 @@ Options parse_command_line(int argc, char** argv)
                       std::to_string(o.files.size()) + " file names)");
   const std::string out_ext = lower_extension(o.files.back());
   if(bit == RENDER && out_ext != "png") throw Usage_error("the output of render must be a .png file: " + o.files.back());
-  if(bit != RENDER && out_ext != "ply") throw Usage_error("the output must be a .ply file: " + o.files.back());
+  if(bit != RENDER && out_ext != "ply" && out_ext != "off" && out_ext != "obj")
+    throw Usage_error("the output must be a .ply file (or .off / .obj for a mesh input): " + o.files.back());
   if(o.width == 0) o.width = o.compare ? 1600 : 800;
   return o;
 }
@@ -397,10 +409,14 @@ struct Input
   bool had_normals = false;
   double read_seconds = 0.;
   std::string format;
+  // Faces of a mesh input (OFF, PLY with a face element, OBJ), as vertex indices, copied as they
+  // are (a polygon soup: non-manifold, badly oriented or non-triangular faces are kept). Empty: a point set.
+  wavejets_demo::Faces faces;
+  bool is_mesh() const { return !faces.empty(); }
 };
 
-// Number of vertices announced by a PLY header (to detect truncated files); -1 if not found.
-long ply_header_vertices(const std::string& path)
+// Number of elements `name` (vertex, face) announced by a PLY header; -1 if not found.
+long ply_header_count(const std::string& path, const std::string& name)
 {
   std::ifstream is(path, std::ios::binary);
   std::string line;
@@ -409,10 +425,37 @@ long ply_header_vertices(const std::string& path)
     std::istringstream s(line);
     std::string a, b;
     long c;
-    if(s >> a >> b >> c && a == "element" && b == "vertex") n = c;
+    if(s >> a >> b >> c && a == "element" && b == name) n = c;
     if(line.compare(0, 10, "end_header") == 0) break;
   }
   return n;
+}
+
+// The faces of an OFF or PLY mesh, read again as a polygon soup (the point set reader skips them).
+// The soup's vertices must be the point set's, one for one.
+bool read_faces(const std::string& path, const std::string& ext, Input& in)
+{
+  std::ifstream is(path, std::ios::binary);
+  std::vector<Point> soup_points;
+  wavejets_demo::Faces faces;
+  const bool ok = ext == "off" ? CGAL::IO::read_OFF(is, soup_points, faces) : CGAL::IO::read_PLY(is, soup_points, faces);
+  if(!ok) return false;
+  if(soup_points.size() != in.points.size())
+    throw std::runtime_error(std::to_string(in.points.size()) + " vertices read, but the faces refer to " +
+                             std::to_string(soup_points.size()));
+  in.faces.swap(faces);
+  return true;
+}
+
+// An OBJ file: vertices (v) and faces (f) as a polygon soup; no vertex normals (OBJ's are per corner).
+bool read_obj(std::istream& is, Input& in)
+{
+  std::vector<Point> soup_points;
+  wavejets_demo::Faces faces;
+  if(!CGAL::IO::read_OBJ(is, soup_points, faces)) return false;
+  for(const Point& p : soup_points) in.points.insert(p);
+  in.faces.swap(faces);
+  return true;
 }
 
 Input read_input(const std::string& path)
@@ -420,9 +463,9 @@ Input read_input(const std::string& path)
   const Clock::time_point t0 = Clock::now();
   Input in;
   const std::string ext = lower_extension(path);
-  if(ext != "ply" && ext != "xyz" && ext != "pwn" && ext != "off")
-    throw File_error(path + ": unsupported format '." + ext + "' (expected .ply, .xyz, .pwn or .off)");
-  in.format = ext == "pwn" ? "XYZ" : ext == "off" ? "OFF" : ext == "ply" ? "PLY" : "XYZ";
+  if(ext != "ply" && ext != "xyz" && ext != "pwn" && ext != "off" && ext != "obj")
+    throw File_error(path + ": unsupported format '." + ext + "' (expected .ply, .xyz, .pwn, .off or .obj)");
+  in.format = ext == "pwn" ? "XYZ" : ext == "off" ? "OFF" : ext == "ply" ? "PLY" : ext == "obj" ? "OBJ" : "XYZ";
   std::ifstream is(path, std::ios::binary);
   if(!is) throw File_error(path + ": cannot open (" + std::strerror(errno) + ")");
   if(is.peek() == std::ifstream::traits_type::eof()) throw File_error(path + ": the file is empty");
@@ -434,7 +477,9 @@ Input read_input(const std::string& path)
   try {
     if(ext == "ply") ok = CGAL::IO::read_PLY(is, in.points);
     else if(ext == "off") ok = CGAL::IO::read_OFF(is, in.points);
+    else if(ext == "obj") ok = read_obj(is, in);
     else ok = CGAL::IO::read_XYZ(is, in.points);
+    if(ok && (ext == "off" || (ext == "ply" && ply_header_count(path, "face") > 0))) ok = read_faces(path, ext, in);
   } catch(const std::exception& e) {
     cgal_messages << e.what() << "\n";
     ok = false;
@@ -445,15 +490,20 @@ Input read_input(const std::string& path)
     why = why.substr(0, why.find('\n'));
     if(why.compare(0, 7, "Error: ") == 0) why = why.substr(7);
     if(why.empty()) why = "malformed or truncated";
-    throw File_error(path + ": not a valid " + in.format + " point set (" + why + ")");
+    throw File_error(path + ": not a valid " + in.format + " file (" + why + ")");
   }
   if(ext == "ply") {
-    const long announced = ply_header_vertices(path);
+    const long announced = ply_header_count(path, "vertex");
     if(announced >= 0 && std::size_t(announced) != in.points.size())
       throw File_error(path + ": truncated PLY (the header announces " + std::to_string(announced) +
                        " vertices, " + std::to_string(in.points.size()) + " could be read)");
   }
   if(in.points.empty()) throw File_error(path + ": contains no points");
+  for(std::size_t f = 0; f < in.faces.size(); ++f)
+    for(std::size_t v : in.faces[f])
+      if(v >= in.points.size())
+        throw File_error(path + ": face " + std::to_string(f) + " refers to vertex " + std::to_string(v) + " but there are " +
+                         std::to_string(in.points.size()) + " vertices");
 
   std::size_t index = 0;
   for(Point_set::Index i : in.points) {
@@ -620,22 +670,121 @@ Point_set::Property_map<double> double_property(Point_set& points, const std::st
   return points.add_property_map<double>(name, 0.).first;
 }
 
-void write_output(const Point_set& points, const std::string& path, bool ascii, const std::string& comment)
+// Output formats: PLY (the point set's properties, and the faces of a mesh), or for a mesh OFF or
+// OBJ (positions, normals and faces only).
+enum class Output_format { PLY, OFF, OBJ };
+
+Output_format output_format(const std::string& path)
+{
+  const std::string e = lower_extension(path);
+  return e == "off" ? Output_format::OFF : e == "obj" ? Output_format::OBJ : Output_format::PLY;
+}
+
+// Appends a face element (list uchar|uint int vertex_indices) to a PLY written by CGAL for the vertices:
+// its header gets the element before end_header, its body the faces after the vertices.
+void append_ply_faces(std::string& ply, const wavejets_demo::Faces& faces, bool ascii)
+{
+  std::size_t largest = 0;
+  for(const std::vector<std::size_t>& f : faces) largest = std::max(largest, f.size());
+  const bool wide = largest > 255;
+  const std::size_t end = ply.find("end_header\n");
+  if(end == std::string::npos) throw File_error("internal error: no end_header in the PLY written by CGAL");
+  ply.insert(end, "element face " + std::to_string(faces.size()) + "\nproperty list " + (wide ? "uint" : "uchar") +
+                    " int vertex_indices\n");
+  std::ostringstream body;
+  if(ascii)
+    for(const std::vector<std::size_t>& f : faces) {
+      body << f.size();
+      for(std::size_t v : f) body << " " << v;
+      body << "\n";
+    }
+  else
+    for(const std::vector<std::size_t>& f : faces) {
+      // PLY binary_little_endian; the tool only builds on little-endian machines (x86, ARM).
+      if(wide) { const std::uint32_t n = std::uint32_t(f.size()); body.write(reinterpret_cast<const char*>(&n), 4); }
+      else { const unsigned char n = (unsigned char)(f.size()); body.write(reinterpret_cast<const char*>(&n), 1); }
+      for(std::size_t v : f) { const std::int32_t i = std::int32_t(v); body.write(reinterpret_cast<const char*>(&i), 4); }
+    }
+  ply += body.str();
+}
+
+void write_off_or_obj(std::ostream& os, const Point_set& points, const wavejets_demo::Faces& faces, Output_format format)
+{
+  os.precision(17);
+  const bool normals = points.has_normal_map();
+  if(format == Output_format::OFF)
+    os << (normals ? "NOFF\n" : "OFF\n") << points.size() << " " << faces.size() << " 0\n";
+  for(Point_set::Index i : points) {
+    const Point& p = points.point(i);
+    os << (format == Output_format::OBJ ? "v " : "") << p.x() << " " << p.y() << " " << p.z();
+    if(normals) {
+      const Vector& n = points.normal(i);
+      os << (format == Output_format::OBJ ? "\nvn " : " ") << n.x() << " " << n.y() << " " << n.z();
+    }
+    os << "\n";
+  }
+  for(const std::vector<std::size_t>& f : faces) {
+    if(format == Output_format::OFF) os << f.size();
+    else os << "f";
+    for(std::size_t v : f) {
+      if(format == Output_format::OFF) os << " " << v;
+      else if(normals) os << " " << v + 1 << "//" << v + 1;
+      else os << " " << v + 1;
+    }
+    os << "\n";
+  }
+}
+
+void write_output(const Point_set& points, const wavejets_demo::Faces& faces, const std::string& path, bool ascii,
+                  const std::string& comment)
 {
   wavejets_demo::Output_file out(path);
   {
     std::ofstream os(out.temporary_path(), std::ios::binary);
     if(!os) throw File_error(path + ": cannot write (" + std::strerror(errno) + ")");
-    if(ascii) { CGAL::IO::set_ascii_mode(os); os.precision(17); }
-    else CGAL::IO::set_binary_mode(os);
-    std::ostringstream cgal_messages;
-    std::streambuf* saved = std::cerr.rdbuf(cgal_messages.rdbuf());
-    const bool ok = CGAL::IO::write_PLY(os, points, comment);
-    std::cerr.rdbuf(saved);
+    const Output_format format = output_format(path);
+    bool ok = true;
+    if(format == Output_format::PLY) {
+      std::ostringstream ply;
+      if(ascii) { CGAL::IO::set_ascii_mode(ply); ply.precision(17); }
+      else CGAL::IO::set_binary_mode(ply);
+      std::ostringstream cgal_messages;
+      std::streambuf* saved = std::cerr.rdbuf(cgal_messages.rdbuf());
+      ok = CGAL::IO::write_PLY(ply, points, comment);
+      std::cerr.rdbuf(saved);
+      std::string text = ply.str();
+      if(ok && !faces.empty()) append_ply_faces(text, faces, ascii);
+      os.write(text.data(), std::streamsize(text.size()));
+    } else
+      write_off_or_obj(os, points, faces, format);
     os.close();
     if(!ok || !os) throw File_error(path + ": cannot write (disk full or not writable?)");
   }
   out.commit();
+}
+
+// Sets the normals of a mesh's vertices to the area-weighted normals of their faces (adds the normal
+// map if needed). A vertex without a face of non-zero area keeps its normal (or gets none: zero);
+// counted in `*without_face`. Returns whether some vertex got a normal.
+bool set_face_normals(Point_set& points, const wavejets_demo::Faces& faces, std::size_t* without_face)
+{
+  std::vector<wavejets_demo::Vec3> xyz;
+  xyz.reserve(points.size());
+  for(Point_set::Index i : points) {
+    const Point& p = points.point(i);
+    xyz.push_back({{p.x(), p.y(), p.z()}});
+  }
+  const std::vector<wavejets_demo::Vec3> normals = wavejets_demo::vertex_normals(xyz, faces);
+  if(!points.has_normal_map()) points.add_normal_map(Vector(0, 0, 0));
+  std::size_t j = 0, missing = 0;
+  for(Point_set::Index i : points) {
+    const wavejets_demo::Vec3& n = normals[j++];
+    if(n[0] == 0 && n[1] == 0 && n[2] == 0) ++missing;
+    else points.normal(i) = Vector(n[0], n[1], n[2]);
+  }
+  if(without_face) *without_face = missing;
+  if(missing == points.size() && !without_face) { points.remove_normal_map(); return false; }
+  return missing < points.size();
 }
 
 int run_fit_command_on_input(const Options& o, Progress& progress)
@@ -645,17 +794,23 @@ int run_fit_command_on_input(const Options& o, Progress& progress)
   const std::string& out_path = o.files[1];
   Input in = read_input(in_path);
   Point_set& points = in.points;
+  if(!in.is_mesh() && output_format(out_path) != Output_format::PLY)
+    throw Usage_error(in_path + " is a point set (no faces): write it as .ply, not " + out_path);
   const Neighborhood n = choose_neighborhood(o, points, in_path);
   const unsigned bit = o.command->bit;
   const std::size_t order = o.order ? o.order : (bit == NORMALS || bit == CURVATURE ? 2 : 4);
   Run_log log;
+  // A mesh without normals: its faces give oriented vertex normals (no estimation, no MST).
+  if(in.is_mesh() && !in.had_normals && set_face_normals(points, in.faces, nullptr))
+    log.lines.push_back("The input has no normals: used the area-weighted normals of its faces.");
+  const bool have_normals = points.has_normal_map();
 
   drop_property(points, "fitted");
   Point_set::Property_map<unsigned char> fitted = points.add_property_map<unsigned char>("fitted", 0).first;
   const Fitted_map fitted_map{fitted};
 
   std::string what;
-  if(bit == NORMALS && in.had_normals) {
+  if(bit == NORMALS && have_normals) {
     const Clock::time_point t = Clock::now();
     const CGAL::Wavejets::Processing_report r = CGAL::wavejet_estimate_normals<Concurrency_tag>(
       points, n.k, fit_parameters(WP::order(order).orient_with_input_normals(true).fitted_map(fitted_map), n, points,
@@ -705,41 +860,60 @@ int run_fit_command_on_input(const Options& o, Progress& progress)
       };
       const CGAL::Wavejets::Processing_report r = o.has_clamp
         ? enhance(WP::maximum_displacement(o.max_displacement).order(order).evaluation_radius(o.evaluation_radius)
+                    .move_along_input_normals(o.along_input_normals).restrict_to_consistent_normals(o.consistent_normals)
                     .write_normals(true).fitted_map(fitted_map))
-        : enhance(WP::order(order).evaluation_radius(o.evaluation_radius).write_normals(true).fitted_map(fitted_map));
+        : enhance(WP::order(order).evaluation_radius(o.evaluation_radius).move_along_input_normals(o.along_input_normals)
+                    .restrict_to_consistent_normals(o.consistent_normals).write_normals(true).fitted_map(fitted_map));
       progress.done();
-      // The normals of the result: re-fitted on the moved points, oriented like the written ones.
-      const CGAL::Wavejets::Processing_report rn = CGAL::wavejet_estimate_normals<Concurrency_tag>(
-        points, n.k, fit_parameters(WP::order(std::size_t(2)).orient_with_input_normals(true), n, points,
-                                    progress.stage("normals of the result")));
-      progress.done();
+      std::string normals_of_result;
+      if(in.is_mesh()) {
+        // The normals of the moved mesh: from its faces (vertices without a face keep their Wavejet normal).
+        std::size_t without_face = 0;
+        set_face_normals(points, in.faces, &without_face);
+        normals_of_result = "normals of the moved mesh from its faces (" + std::to_string(without_face) +
+                            " vertices without a face keep their Wavejet normal)";
+      } else {
+        // The normals of the result: re-fitted on the moved points, oriented like the written ones.
+        const CGAL::Wavejets::Processing_report rn = CGAL::wavejet_estimate_normals<Concurrency_tag>(
+          points, n.k, fit_parameters(WP::order(std::size_t(2)).orient_with_input_normals(true), n, points,
+                                      progress.stage("normals of the result")));
+        progress.done();
+        normals_of_result = "normals re-estimated on the moved points (" + std::to_string(rn.number_of_unfitted_points) +
+                            " not fitted)";
+      }
       what = "Position enhancement (order " + std::to_string(order) + ", gain " + format(gain) + ", evaluation radius " +
              (o.evaluation_radius > 0 ? format(o.evaluation_radius) : std::string("Rf")) + ", clamp " +
              (!o.has_clamp ? std::string("Rf/2") : std::isinf(o.max_displacement) ? std::string("none") : format(o.max_displacement)) +
-             "): " + report_text(r, true) + "; normals re-estimated on the moved points (" +
-             std::to_string(rn.number_of_unfitted_points) + " not fitted).";
+             (o.along_input_normals ? std::string(", along the input normals") : std::string()) +
+             (o.consistent_normals ? std::string(", neighbors with consistent normals") : std::string()) +
+             "): " + report_text(r, true) + "; " + normals_of_result + ".";
     } else {
       const CGAL::Wavejets::Processing_report r = CGAL::wavejet_enhance_normals<Concurrency_tag>(
         points, n.k, o.gain,
-        fit_parameters(WP::order(order).evaluation_radius(o.evaluation_radius).fitted_map(fitted_map), n, points,
-                       progress.stage("enhancing normals")));
+        fit_parameters(WP::order(order).evaluation_radius(o.evaluation_radius).restrict_to_consistent_normals(o.consistent_normals)
+                         .fitted_map(fitted_map), n, points, progress.stage("enhancing normals")));
       progress.done();
       const std::string g = o.gain.imag() == 0 ? format(o.gain.real()) : format(o.gain.real()) + (o.gain.imag() < 0 ? "" : "+") + format(o.gain.imag()) + "i";
       what = "Normal enhancement (order " + std::to_string(order) + ", gain " + g + ", evaluation radius " +
-             (o.evaluation_radius > 0 ? format(o.evaluation_radius) : std::string("Rf")) + "): " + report_text(r, false) + ".";
+             (o.evaluation_radius > 0 ? format(o.evaluation_radius) : std::string("Rf")) +
+             (o.consistent_normals ? std::string(", neighbors with consistent normals") : std::string()) +
+             "): " + report_text(r, false) + ".";
     }
     log.fit_seconds += seconds_since(t);
   }
 
   const Clock::time_point tw = Clock::now();
-  write_output(points, out_path, o.ascii, std::string("wavejets ") + o.command->name + " of " + in_path);
+  write_output(points, in.faces, out_path, o.ascii, std::string("wavejets ") + o.command->name + " of " + in_path);
   const double write_seconds = seconds_since(tw);
 
   if(!o.quiet) {
     std::ostringstream s;
     s << std::fixed << std::setprecision(2);
-    s << o.command->name << ": read " << points.size() << " points from " << in_path << " (" << in.format << ", "
-      << (in.had_normals ? "with" : "without") << " normals) in " << in.read_seconds << " s; neighborhoods: "
+    s << o.command->name << ": read ";
+    if(in.is_mesh()) s << "a mesh of " << points.size() << " vertices and " << in.faces.size() << " faces";
+    else s << "a point set of " << points.size() << " points";
+    s << " from " << in_path << " (" << in.format << ", " << (in.had_normals ? "with" : "without") << " normals) in "
+      << in.read_seconds << " s; neighborhoods: "
       << n.description << "; ";
 #ifdef CGAL_LINKED_WITH_TBB
     s << "threads: " << tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism) << ". ";
@@ -748,10 +922,18 @@ int run_fit_command_on_input(const Options& o, Progress& progress)
 #endif
     for(const std::string& l : log.lines) s << l << " ";
     if(!what.empty()) s << what << " ";
-    s << "Fitting took " << log.fit_seconds << " s. Wrote " << out_path << " (" << (o.ascii ? "ASCII" : "binary little-endian")
-      << " PLY, " << points.size() << " points in input order, properties: x y z";
-    for(const std::string& p : points.properties())
-      if(p != "index" && p != "point") s << " " << (p == "normal" ? "nx ny nz" : p);
+    s << "Fitting took " << log.fit_seconds << " s. Wrote " << out_path << " (";
+    const Output_format of = output_format(out_path);
+    if(of == Output_format::PLY) {
+      s << (o.ascii ? "ASCII" : "binary little-endian") << " PLY";
+      if(in.is_mesh()) s << " mesh, " << points.size() << " vertices in input order and the " << in.faces.size() << " input faces";
+      else s << ", " << points.size() << " points in input order";
+      s << ", properties: x y z";
+      for(const std::string& p : points.properties())
+        if(p != "index" && p != "point") s << " " << (p == "normal" ? "nx ny nz" : p);
+    } else
+      s << (of == Output_format::OFF ? "OFF" : "OBJ") << " mesh, " << points.size() << " vertices in input order with "
+        << "their normals and the " << in.faces.size() << " input faces; the other properties need a .ply output";
     s << ") in " << write_seconds << " s; total " << seconds_since(t0) << " s.";
     std::cout << s.str() << std::endl;
   }
@@ -775,6 +957,8 @@ wavejets_demo::Cloud to_cloud(const std::string& path, const Options& o, Progres
   Point_set& points = in.points;
   wavejets_demo::Cloud c;
   c.spacing = average_spacing(points);
+  c.faces = in.faces;
+  if(in.is_mesh() && !points.has_normal_map()) set_face_normals(points, in.faces, nullptr);
   if(!points.has_normal_map()) {   // shading needs normals; their orientation does not matter
     points.add_normal_map(Vector(0, 0, 0));
     try {
@@ -834,9 +1018,13 @@ int run_render(const Options& o, Progress& progress)
   if(!o.quiet) {
     std::ostringstream s;
     s << std::fixed << std::setprecision(2) << "render: ";
-    if(clouds.size() == 1) s << "drew " << clouds[0].points.size() << " points of " << o.files[0];
-    else s << "compared " << o.files[0] << " (left, " << clouds[0].points.size() << " points) with " << o.files[1]
-           << " (right, " << clouds[1].points.size() << " points)";
+    auto what = [](const wavejets_demo::Cloud& c) {
+      return c.faces.empty() ? std::to_string(c.points.size()) + " points as splats"
+                             : "a mesh of " + std::to_string(c.faces.size()) + " faces";
+    };
+    if(clouds.size() == 1) s << "drew " << what(clouds[0]) << " of " << o.files[0];
+    else s << "compared " << o.files[0] << " (left, " << what(clouds[0]) << ") with " << o.files[1]
+           << " (right, " << what(clouds[1]) << ")";
     s << "; wrote " << out_path << " (" << image.width << " x " << image.height << " PNG) in " << seconds_since(t0) << " s.";
     std::cout << s.str() << std::endl;
   }

@@ -32,6 +32,8 @@ expect_error() { # FILE OUT -- COMMAND ARGS...
 }
 
 kitten_props="fitted"
+# A small triangle mesh next to the kitten (examples/Wavejets/data/anchor_dense.off).
+mesh="$(dirname "$kitten")/anchor_dense.off"
 case $case_name in
   help)
     run --help | tee help.txt
@@ -205,6 +207,106 @@ case $case_name in
     "$wj" enhance-positions "$kitten" p.ply --quiet || fail "enhance-positions"
     run render --compare "$kitten" p.ply cmp.png --width 640 --height 320 || fail "compare failed"
     "$check" png cmp.png 640 320 || fail "compare check"
+    ;;
+  mesh_off)
+    # Mesh in, mesh out: every command that writes points keeps the vertex order and the faces,
+    # as a PLY with a face element by default, as OFF or OBJ when OUT says so.
+    props_of() { case $1 in curvature) echo "fitted mean_curvature quality";; *) echo "fitted";; esac; }
+    for c in normals curvature enhance-positions enhance-normals; do
+      tol=0; [ "$c" = enhance-positions ] && tol=inf
+      # shellcheck disable=SC2046
+      expect_ok "$mesh" "m_$c.ply" "$tol" "$(props_of $c)" -- "$c" "$mesh" "m_$c.ply" | tee "summary_$c.txt"
+      "$check" faces "$mesh" "m_$c.ply" || fail "$c: the PLY output does not have the input's faces"
+      grep -q "read a mesh of 3793 vertices and 7598 faces" "summary_$c.txt" || fail "$c: the summary does not say mesh"
+      grep -q "PLY mesh, 3793 vertices in input order and the 7598 input faces" "summary_$c.txt" || fail "$c: the summary does not describe the mesh output"
+      grep -q "normals of its faces" "summary_$c.txt" || fail "$c: the input normals do not come from the faces"
+      for ext in off obj; do
+        run "$c" "$mesh" "m_$c.$ext" --quiet || fail "$c: .$ext output failed"
+        "$check" faces "$mesh" "m_$c.$ext" || fail "$c: the .$ext output does not have the input's faces"
+      done
+    done
+    # The OFF output carries the same positions and normals as the PLY output.
+    "$check" same m_enhance-positions.ply m_enhance-positions.off || fail "the OFF and PLY outputs differ"
+    grep -q "normals of the moved mesh from its faces" summary_enhance-positions.txt || fail "the moved mesh's normals are not its faces'"
+    # ASCII PLY output keeps the faces too.
+    run enhance-normals "$mesh" m_ascii.ply --ascii --quiet && "$check" faces "$mesh" m_ascii.ply || fail "ASCII PLY mesh output"
+    # A point set (the kitten) still gives a point set, and cannot be written as OFF.
+    expect_ok "$kitten" p.ply 0 "fitted" -- normals "$kitten" p.ply --quiet
+    "$check" no_faces p.ply || fail "a point set got faces"
+    "$wj" normals "$kitten" p.off 2> stderr.txt; status=$?
+    [ $status -eq 2 ] && grep -q "point set" stderr.txt && [ ! -e p.off ] || fail "OFF output of a point set: exit $status, $(cat stderr.txt)"
+    ;;
+  mesh_ply)
+    # A PLY mesh (binary, with a face element) in: PLY mesh out with the same faces and vertex order.
+    "$wj" normals "$mesh" in.ply --quiet || fail "cannot make a PLY mesh"
+    "$check" faces "$mesh" in.ply || fail "the PLY mesh has other faces"
+    expect_ok in.ply out.ply inf "fitted" -- enhance-positions in.ply out.ply --gain 2 | tee summary.txt
+    "$check" faces in.ply out.ply || fail "enhance-positions of a PLY mesh lost its faces"
+    grep -q "read a mesh of" summary.txt || fail "the summary does not say mesh"
+    "$wj" normals "$mesh" in_ascii.ply --ascii --quiet || fail "cannot make an ASCII PLY mesh"
+    expect_ok in_ascii.ply out2.ply 0 "fitted" -- enhance-normals in_ascii.ply out2.ply --gain 3 --quiet
+    "$check" faces "$mesh" out2.ply || fail "enhance-normals of an ASCII PLY mesh lost its faces"
+    # Same results from the OFF and the PLY of the same mesh (the PLY has the OFF's face normals:
+    # run both with normals).
+    expect_ok "$mesh" a.ply 0 "fitted" -- enhance-normals in.ply a.ply --quiet
+    expect_ok "$mesh" b.ply 0 "fitted" -- enhance-normals in.ply b.ply --quiet --threads 1
+    "$check" same a.ply b.ply || fail "threads change the results on a mesh"
+    ;;
+  mesh_soup)
+    # Polygon soups and non-manifold meshes: faces are copied as they are (here a non-manifold
+    # edge, a duplicated face, a quad, a pentagon and an isolated vertex), OBJ input too.
+    # (anchor_dense.off: "OFF", then "V F 0", V vertex lines, F face lines; its first face is 3596 2693 27.)
+    awk 'NR == 2 { n = $1; print $1 + 1, $2 + 4, 0; next }
+         { print }
+         NR == n + 2 { print "0.3 0.3 0.3" }
+         END { print "3 3596 2693 100"; print "3 3596 2693 27"; print "4 0 1 2 3"; print "5 4 5 6 7 8" }' "$mesh" > soup.off
+    head -n 2 soup.off | tail -n 1 | grep -q "^3794 7602 0" || fail "soup.off header: $(head -n 2 soup.off | tail -n 1)"
+    expect_ok soup.off soup_out.ply inf "fitted" -- enhance-positions soup.off soup_out.ply | tee summary.txt
+    "$check" faces soup.off soup_out.ply || fail "the soup's faces were not copied as they are"
+    grep -q "3794 vertices and 7602 faces" summary.txt || fail "the soup summary"
+    run enhance-positions soup.off soup_out.off --quiet && "$check" faces soup.off soup_out.off || fail "soup to OFF"
+    # OBJ input (v / f lines, 1-based).
+    awk 'NR == 2 { n = $1; next } NR > 2 && NR <= n + 2 { print "v", $1, $2, $3; next } NR > n + 2 && NF > 1 { printf "f"; for(i = 2; i <= NF; ++i) printf " %d", $i + 1; print "" }' "$mesh" > m.obj
+    expect_ok "$mesh" obj_out.ply inf "fitted" -- enhance-positions m.obj obj_out.ply | tee summary.txt
+    "$check" faces "$mesh" obj_out.ply || fail "the OBJ's faces were not kept"
+    grep -q "(OBJ, without normals)" summary.txt || fail "the OBJ summary"
+    run enhance-positions m.obj obj_out.obj --quiet && "$check" faces "$mesh" obj_out.obj || fail "OBJ to OBJ"
+    # A face that refers to a vertex that does not exist: an error naming the file, nothing written.
+    awk 'NR == 2 { print $1, $2 + 1, 0; next } { print } END { print "3 0 1 99999" }' "$mesh" > bad_face.off
+    expect_error bad_face.off out.ply -- enhance-positions bad_face.off out.ply
+    ;;
+  along_input_normals)
+    # The paper's pipeline for noisy inputs (Figure 12): normals filtered at gain 0, then positions
+    # moved along them. With --along-input-normals every moved point moves along its input normal;
+    # without, along its Wavejet normal, which differs from the filtered one at most points.
+    expect_ok "$kitten" n0.ply 0 "fitted" -- enhance-normals "$kitten" n0.ply --gain 0 --quiet
+    expect_ok n0.ply along.ply inf "fitted" -- enhance-positions n0.ply along.ply --along-input-normals | tee summary.txt
+    grep -q "along the input normals" summary.txt || fail "the summary does not say along the input normals"
+    "$check" along n0.ply along.ply 1.0 || fail "--along-input-normals: a point did not move along its input normal"
+    expect_ok n0.ply plain.ply inf "fitted" -- enhance-positions n0.ply plain.ply --quiet
+    "$check" along n0.ply plain.ply 0.5 && fail "without the flag the points also move along the input normals (the check cannot fail)"
+    # Meshes too (input normals from the faces).
+    expect_ok "$mesh" m_along.ply inf "fitted" -- enhance-positions "$mesh" m_along.ply --along-input-normals --quiet
+    "$check" faces "$mesh" m_along.ply || fail "mesh faces with --along-input-normals"
+    # --consistent-normals (neighbors on the other side of a thin part left out): runs, says so, and
+    # changes the result on the anchor (which has thin parts).
+    expect_ok "$mesh" m_cons.ply inf "fitted" -- enhance-positions "$mesh" m_cons.ply --consistent-normals | tee summary.txt
+    grep -q "neighbors with consistent normals" summary.txt || fail "the summary does not say consistent normals"
+    expect_ok "$mesh" m_all.ply inf "fitted" -- enhance-positions "$mesh" m_all.ply --quiet
+    "$check" same m_cons.ply m_all.ply > /dev/null && fail "--consistent-normals changes nothing on the anchor"
+    ;;
+  render_mesh)
+    "$check" renderer || fail "renderer self-checks"
+    run render "$mesh" m.png --width 320 --height 240 --view 1,1,1 | tee summary.txt || fail "render of a mesh failed"
+    "$check" png m.png 320 240 || fail "render check (mesh)"
+    grep -q "a mesh of 7598 faces" summary.txt || fail "the mesh was not drawn as a mesh"
+    "$wj" curvature "$mesh" mc.ply --quiet || fail "curvature of a mesh"
+    run render mc.ply mc.png --width 256 --height 256 --color-by mean_curvature || fail "render --color-by of a mesh failed"
+    "$check" png mc.png 256 256 || fail "render check (mesh, color)"
+    "$wj" enhance-positions "$mesh" mp.ply --quiet || fail "enhance-positions of a mesh"
+    run render --compare "$mesh" mp.ply mcmp.png --width 640 --height 320 | tee summary.txt || fail "compare of meshes failed"
+    "$check" png mcmp.png 640 320 || fail "compare check (mesh)"
+    grep -q "(left, a mesh of 7598 faces) with mp.ply (right, a mesh of 7598 faces)" summary.txt || fail "compare summary"
     ;;
   *) fail "unknown case"; ;;
 esac

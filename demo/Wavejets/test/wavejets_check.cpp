@@ -11,17 +11,27 @@
 //     m_i > HIGH x Rf_i (FRACTION 0: all within).
 //   wavejets_check png FILE WIDTH HEIGHT
 //     FILE is a WIDTH x HEIGHT PNG with at least 1% of its pixels not background.
+//   wavejets_check faces IN OUT
+//     IN and OUT (OFF, PLY or OBJ, read as polygon soups) have as many vertices and the same faces
+//     (same vertex indices, same order); OUT has at least one face.
+//   wavejets_check no_faces OUT     OUT (a PLY) has no face element.
+//   wavejets_check along IN OUT FRACTION
+//     at least FRACTION of the points that moved from IN to OUT moved along their normal in IN
+//     (sine of the angle below 1e-6).
+//   wavejets_check renderer         self-checks of the renderer on tiny scenes (triangles, splats).
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Point_set_3.h>
 #include <CGAL/Wavejets/internal/cgal_compatibility.h> // find_property_map: CGAL 5.5 and 6
 #include <CGAL/Point_set_3/IO.h>
 #include <CGAL/Search_traits_3.h>
 #include <CGAL/Orthogonal_k_neighbor_search.h>
+#include <CGAL/IO/polygon_soup_io.h>
 
 #include "render.h"
 
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -38,6 +48,77 @@ static int fail(const std::string& message)
 static bool read(const std::string& path, Point_set& points)
 {
   return CGAL::IO::read_point_set(path, points) && !points.empty();
+}
+
+// The renderer on tiny scenes, viewed along +z (default camera), 64 x 64 pixels.
+static int renderer_checks()
+{
+  using wavejets_demo::Cloud;
+  using wavejets_demo::Vec3;
+  wavejets_demo::View_options view;
+  view.width = view.height = 64;
+  auto pixel = [](const wavejets_demo::Image& im, int x, int y) {
+    const std::size_t i = (std::size_t(y) * im.width + x) * 3;
+    return std::array<int, 3>{{im.rgb[i], im.rgb[i + 1], im.rgb[i + 2]}};
+  };
+  auto is_background = [](const std::array<int, 3>& c) {
+    return c[0] == wavejets_demo::background[0] && c[1] == wavejets_demo::background[1] && c[2] == wavejets_demo::background[2];
+  };
+  // 1. A unit square of two triangles facing the camera covers the middle of the frame, without a
+  //    crack along its diagonal.
+  Cloud square;
+  square.points = {{{0, 0, 0}}, {{1, 0, 0}}, {{1, 1, 0}}, {{0, 1, 0}}};
+  square.normals.assign(4, Vec3{{0, 0, 1}});
+  square.faces = {{0, 1, 2}, {0, 2, 3}};
+  square.spacing = 1.;
+  wavejets_demo::Image im = wavejets_demo::render({&square}, view);
+  for(int y = 8; y < 56; ++y)
+    for(int x = 8; x < 56; ++x)
+      if(is_background(pixel(im, x, y))) return fail("triangles: background at (" + std::to_string(x) + ", " + std::to_string(y) + ")");
+  // 2. Z-buffer: a red square in front of it (nearer the camera, at z = 1) hides it; behind (z = -1), it is hidden.
+  for(int back = 0; back < 2; ++back) {
+    Cloud both = square;
+    both.scalar.assign(8, 0.);   // white-ish
+    for(int j = 0; j < 4; ++j) {
+      Vec3 p = square.points[j];
+      p[2] = back ? -1. : 1.;
+      both.points.push_back(p);
+      both.normals.push_back(Vec3{{0, 0, 1}});
+      both.scalar[4 + j] = 1.;   // red
+    }
+    both.faces.push_back({4, 5, 6});
+    both.faces.push_back({4, 6, 7});
+    im = wavejets_demo::render({&both}, view);
+    const std::array<int, 3> c = pixel(im, 32, 32);
+    const bool reddish = c[0] > c[1] + 60;
+    if(reddish == bool(back)) return fail(std::string("z-buffer: the ") + (back ? "hidden red square shows" : "front red square is hidden"));
+  }
+  // 3. Smooth shading: normals that turn across one triangle give varying shades inside it.
+  Cloud bent = square;
+  bent.normals = {{{-0.7, 0, 0.7}}, {{0.7, 0, 0.7}}, {{0.7, 0, 0.7}}, {{-0.7, 0, 0.7}}};
+  im = wavejets_demo::render({&bent}, view);
+  if(pixel(im, 12, 32) == pixel(im, 52, 32)) return fail("smooth shading: the same shade across the square");
+  // 4. Splats: a point seen edge-on draws a thin ellipse, not a full disc sticking out of the silhouette.
+  Cloud facing, edge_on;
+  for(int i = 0; i < 3; ++i) {   // three points set the frame; the middle one is measured
+    facing.points.push_back(Vec3{{double(i), 0., 0.}});
+    facing.normals.push_back(Vec3{{0., 0., 1.}});
+  }
+  edge_on = facing;
+  for(Vec3& n : edge_on.normals) n = Vec3{{0., 1., 0.}};
+  facing.spacing = edge_on.spacing = 0.4;
+  auto drawn = [&](const Cloud& c) {
+    const wavejets_demo::Image image = wavejets_demo::render({&c}, view);
+    std::size_t count = 0;
+    for(int y = 0; y < image.height; ++y)
+      for(int x = 24; x < 40; ++x) count += !is_background(pixel(image, x, y));
+    return count;
+  };
+  const std::size_t round = drawn(facing), thin = drawn(edge_on);
+  if(!(round > 0 && thin * 2 < round))
+    return fail("splats: edge-on splat covers " + std::to_string(thin) + " pixels, facing " + std::to_string(round));
+  std::cout << "OK: renderer (triangles cover, z-buffer, smooth shading, splat " << thin << " / " << round << " pixels)" << std::endl;
+  return EXIT_SUCCESS;
 }
 
 int main(int argc, char** argv)
@@ -144,6 +225,46 @@ int main(int argc, char** argv)
     std::cout << "OK: " << image.width << "x" << image.height << ", " << drawn << " pixels drawn" << std::endl;
     return EXIT_SUCCESS;
   }
-  std::cerr << "usage: wavejets_check points IN OUT TOLERANCE [PROPERTY...] | same A B | agree A B F | motion IN OUT K LOW HIGH FRACTION | png FILE W H" << std::endl;
+  if(mode == "faces" && argc == 4) {
+    std::vector<Kernel::Point_3> pa, pb;
+    std::vector<std::vector<std::size_t> > fa, fb;
+    if(!CGAL::IO::read_polygon_soup(argv[2], pa, fa)) return fail(std::string("cannot read ") + argv[2] + " as a polygon soup");
+    if(!CGAL::IO::read_polygon_soup(argv[3], pb, fb)) return fail(std::string("cannot read ") + argv[3] + " as a polygon soup");
+    if(pa.size() != pb.size()) return fail("vertex count " + std::to_string(pb.size()) + " != " + std::to_string(pa.size()));
+    if(fb.empty()) return fail("no faces in the output");
+    if(fa != fb) return fail("the faces differ (" + std::to_string(fa.size()) + " faces in, " + std::to_string(fb.size()) + " out)");
+    std::cout << "OK: " << pb.size() << " vertices, the same " << fb.size() << " faces" << std::endl;
+    return EXIT_SUCCESS;
+  }
+  if(mode == "no_faces" && argc == 3) {
+    std::ifstream is(argv[2], std::ios::binary);
+    std::string line;
+    while(std::getline(is, line) && line.compare(0, 10, "end_header") != 0)
+      if(line.compare(0, 12, "element face") == 0) return fail(std::string(argv[2]) + " has a face element");
+    if(!is) return fail(std::string("no PLY header in ") + argv[2]);
+    std::cout << "OK: no faces" << std::endl;
+    return EXIT_SUCCESS;
+  }
+  if(mode == "along" && argc == 5) {
+    Point_set in, out;
+    if(!read(argv[2], in) || !read(argv[3], out) || in.size() != out.size()) return fail("cannot read the files or sizes differ");
+    if(!in.has_normal_map()) return fail("IN has no normals");
+    std::size_t moved = 0, along = 0;
+    for(std::size_t i = 0; i < in.size(); ++i) {
+      const Point_set::Index a = *(in.begin() + i), b = *(out.begin() + i);
+      const Kernel::Vector_3 m = out.point(b) - in.point(a), n = in.normal(a);
+      if(m == CGAL::NULL_VECTOR) continue;
+      ++moved;
+      const double sine = std::sqrt(CGAL::cross_product(m, n).squared_length() / (m.squared_length() * n.squared_length()));
+      along += (sine < 1e-6);
+    }
+    const double fraction = moved ? double(along) / double(moved) : 0.;
+    std::cout << along << " of the " << moved << " moved points moved along their input normal" << std::endl;
+    if(moved == 0 || fraction < std::atof(argv[4])) return fail("fraction " + std::to_string(fraction));
+    std::cout << "OK" << std::endl;
+    return EXIT_SUCCESS;
+  }
+  if(mode == "renderer" && argc == 2) return renderer_checks();
+  std::cerr << "usage: wavejets_check points IN OUT TOLERANCE [PROPERTY...] | same A B | agree A B F | motion IN OUT K LOW HIGH FRACTION | png FILE W H | faces IN OUT | no_faces OUT | renderer" << std::endl;
   return 2;
 }
