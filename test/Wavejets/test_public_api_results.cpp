@@ -106,7 +106,21 @@ static void fit_one_point(const std::vector<PV>& input, Records& out)
     by_distance.emplace_back(CGAL::squared_distance(input[i].first, input[100].first), i);
   std::sort(by_distance.begin(), by_distance.end());
   std::vector<Point> neighborhood;
-  for(std::size_t j = 0; j < 61; ++j) neighborhood.push_back(input[by_distance[j].second].first);
+  std::vector<Vector> normals;
+  for(std::size_t j = 0; j < 61; ++j)
+  {
+    neighborhood.push_back(input[by_distance[j].second].first);
+    normals.push_back(input[by_distance[j].second].second);
+  }
+  {
+    // The Hermite fit (heights and the neighbors' normals).
+    Fitting fitting;
+    const Fitting::Wavejet_form form = fitting(neighborhood.begin(), neighborhood.end(), normals.begin(), 4);
+    const Vector n = form.normal_direction();
+    out.add("fitting_hermite_K4", {double(int(form.status())), double(form.order()), n.x(), n.y(), n.z(),
+                                   form.mean_curvature(), form.gaussian_curvature()});
+    out.add("fitting_hermite_K4_coefficients", form.coefficients());
+  }
 
   for(std::size_t order : {2, 4, 6})
   {
@@ -178,6 +192,27 @@ static void point_set_functions(const std::vector<PV>& input, Records& out)
     report("enhance_positions", CGAL::wavejet_enhance_positions<Seq>(points, 40, 2.,
              WJP::order(4).write_normals(true).evaluation_radius(0.03).point_map(Point_map()).normal_map(Normal_map())), out);
     out.add_points("enhance_positions", points, true);
+  }
+  {
+    // The Hermite curvatures, with the normals estimated first (no normal map given).
+    std::vector<Point> positions;
+    for(const PV& p : input) positions.push_back(p.first);
+    std::vector<double> h(positions.size()), k1(positions.size()), k2(positions.size());
+    std::vector<std::size_t> index(positions.size());
+    for(std::size_t i = 0; i < index.size(); ++i) index[i] = i;
+    report("estimate_curvatures_hermite", CGAL::wavejet_estimate_curvatures<Seq>(index, 30,
+             WJP::mean_curvature_map(CGAL::make_property_map(h)).maximal_principal_curvature_map(CGAL::make_property_map(k1))
+               .minimal_principal_curvature_map(CGAL::make_property_map(k2)).use_neighbor_normals(true)
+               .point_map(CGAL::make_property_map(positions))), out);
+    for(std::size_t i = 0; i < index.size(); ++i)
+      out.add("estimate_curvatures_hermite[" + std::to_string(i) + "]", {h[i], k1[i], k2[i]});
+  }
+  {
+    // Positions moved along the input normals (the paper's Figure 12 pipeline).
+    std::vector<PV> points = input;
+    report("enhance_positions_along_input_normals", CGAL::wavejet_enhance_positions<Seq>(points, 40, 2.,
+             WJP::move_along_input_normals(true, pm)), out);
+    out.add_points("enhance_positions_along_input_normals", points, false);
   }
   {
     std::vector<PV> points = input;
