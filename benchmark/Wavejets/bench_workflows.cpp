@@ -1,0 +1,376 @@
+// What swapping the normal estimator buys in CGAL's reconstruction workflow (read, remove
+// outliers, estimate normals, orient them with mst_orient_normals, Poisson reconstruction):
+// on closed triangle meshes with known geometry, sampled densely, with Gaussian position noise
+// and outliers, each normal estimator feeds the same workflow, and the reconstructed surface is
+// compared with the true one (point-to-mesh distances through AABB trees, both ways).
+//
+// Usage: bench_workflows [--points N] [--k K] [--samples M] [--mesh file.off]... [--out file.md]
+//                        [--no-write]
+//   --points N   points sampled per mesh (default 30000)
+//   --k K        neighbors of every normal estimator and of mst_orient_normals (default 24, CGAL's tutorial)
+//   --samples M  points sampled on each surface for the distances (default 30000)
+//   --mesh F     a closed triangle mesh (repeatable; default data/bunny00.off and data/fandisk.off)
+//   --out F      where the tables go (default workflows.md next to this source)
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Point_set_3.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/version.h>
+#if CGAL_VERSION_MAJOR >= 6
+#include <CGAL/AABB_traits_3.h>
+#else
+#include <CGAL/AABB_traits.h>
+#endif
+#include <CGAL/Polygon_mesh_processing/bbox.h>
+#include <CGAL/Polygon_mesh_processing/compute_normal.h>
+#include <CGAL/Polygon_mesh_processing/measure.h>
+#include <CGAL/Random.h>
+#include <CGAL/Real_timer.h>
+#include <CGAL/boost/graph/helpers.h>
+#include <CGAL/boost/graph/IO/polygon_mesh_io.h>
+#include <CGAL/point_generators_3.h>
+
+#include <CGAL/compute_average_spacing.h>
+#include <CGAL/jet_estimate_normals.h>
+#include <CGAL/mst_orient_normals.h>
+#include <CGAL/pca_estimate_normals.h>
+#include <CGAL/poisson_surface_reconstruction.h>
+#include <CGAL/remove_outliers.h>
+
+#include <CGAL/wavejet_estimate_normals.h>
+
+#include <algorithm>
+#include <cmath>
+#include <ctime>
+#include <random>
+#include <fstream>
+#include <functional>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+
+typedef CGAL::Exact_predicates_inexact_constructions_kernel Kernel;
+typedef Kernel::Point_3 Point;
+typedef Kernel::Vector_3 Vector;
+typedef CGAL::Point_set_3<Point, Vector> Point_set;
+typedef CGAL::Surface_mesh<Point> Mesh;
+typedef CGAL::AABB_face_graph_triangle_primitive<Mesh> Primitive;
+#if CGAL_VERSION_MAJOR >= 6
+typedef CGAL::AABB_traits_3<Kernel, Primitive> Traits;
+#else
+typedef CGAL::AABB_traits<Kernel, Primitive> Traits;
+#endif
+typedef CGAL::AABB_tree<Traits> Tree;
+namespace PMP = CGAL::Polygon_mesh_processing;
+namespace WP = CGAL::Wavejets::parameters;
+
+struct Condition
+{
+  std::string name;
+  double sigma;            // Gaussian noise per coordinate, fraction of the bounding-box diagonal
+  double outlier_fraction; // points moved by a uniform vector of a ball of radius 2.5% of the diagonal
+};
+
+struct Estimator
+{
+  std::string name;
+  std::function<void(Point_set&, unsigned int)> run; // writes the unoriented normals
+};
+
+struct Result
+{
+  std::string mesh, condition, estimator;
+  std::size_t input = 0, after_outlier_removal = 0, oriented = 0;
+  double normal_seconds = 0., mean_angle = 0., flipped_percent = 0.;
+  bool reconstructed = false;
+  std::size_t vertices = 0;
+  double to_true_mean = 0., to_true_p95 = 0., from_true_mean = 0., from_true_p95 = 0., hausdorff = 0.;
+};
+
+static std::string fmt(double v, int digits = 3)
+{
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(digits) << v;
+  return s.str();
+}
+
+// Mean, 95th percentile and maximum of distances.
+static void summarize(std::vector<double> d, double& mean, double& p95, double& max)
+{
+  std::sort(d.begin(), d.end());
+  double sum = 0.;
+  for(double x : d) sum += x;
+  mean = sum / double(d.size());
+  p95 = d[std::size_t(0.95 * double(d.size() - 1))];
+  max = d.back();
+}
+
+static std::vector<double> distances(const std::vector<Point>& from, const Tree& to)
+{
+  std::vector<double> d;
+  d.reserve(from.size());
+  for(const Point& p : from) d.push_back(std::sqrt(to.squared_distance(p)));
+  return d;
+}
+
+static std::vector<Point> sample(const Mesh& mesh, std::size_t n, unsigned int seed)
+{
+  CGAL::Random random(seed);
+  std::vector<Point> points;
+  points.reserve(n);
+  CGAL::Random_points_in_triangle_mesh_3<Mesh> generator(mesh, random);
+  std::copy_n(generator, n, std::back_inserter(points));
+  return points;
+}
+
+// Order 2 (the default); robust_iterations(0) and use_neighbor_normals(false) are the defaults.
+// With use_neighbor_normals(true) the function estimates the neighbors' normals itself first (the
+// point set's normals are not read: no parameter asks for the input normals).
+static void wavejet_normals(Point_set& points, unsigned int k, std::size_t robust_iterations, bool hermite)
+{
+  CGAL::wavejet_estimate_normals<CGAL::Sequential_tag>(
+    points, k, WP::order(2).robust_iterations(robust_iterations).use_neighbor_normals(hermite));
+}
+
+int main(int argc, char** argv)
+{
+  const std::string here = std::string(__FILE__).substr(0, std::string(__FILE__).find_last_of('/') + 1); // ends in '/'
+
+  std::size_t n = 30000, samples = 30000;
+  unsigned int k = 24;
+  std::vector<std::string> meshes;
+  std::string out = here + "workflows.md";
+  bool write = true;
+  std::ostringstream command;
+  command << "bench_workflows";
+  for(int i = 1; i < argc; ++i)
+  {
+    const std::string a = argv[i];
+    const bool has_value = i + 1 < argc;
+    if(a == "--points" && has_value) n = std::stoul(argv[++i]);
+    else if(a == "--k" && has_value) k = unsigned(std::stoul(argv[++i]));
+    else if(a == "--samples" && has_value) samples = std::stoul(argv[++i]);
+    else if(a == "--mesh" && has_value) meshes.push_back(argv[++i]);
+    else if(a == "--out" && has_value) out = argv[++i];
+    else if(a == "--no-write") write = false;
+    else
+    {
+      std::cerr << "usage: bench_workflows [--points N] [--k K] [--samples M] [--mesh file.off]... [--out file.md] [--no-write]\n";
+      return a == "--help" ? 0 : 1;
+    }
+    command << " " << a;
+    if(a != "--no-write") command << " " << argv[i];
+  }
+  if(n < 1000 || k < 6 || samples < 1000)
+  {
+    std::cerr << "need --points >= 1000, --k >= 6, --samples >= 1000\n";
+    return 1;
+  }
+  if(meshes.empty())
+    meshes = {here + "data/bunny00.off",
+              here + "data/fandisk.off"};
+
+  const std::vector<Condition> conditions = {
+    {"noise 0", 0., 0.}, {"noise 0.25%", 0.0025, 0.}, {"noise 0.5%", 0.005, 0.},
+    {"noise 0.25% + 5% outliers", 0.0025, 0.05}};
+  // Every estimator writes unoriented normals with the same k, Sequential_tag (timed alone).
+  const std::vector<Estimator> estimators = {
+    {"pca_estimate_normals", [](Point_set& ps, unsigned int kk) {
+       CGAL::pca_estimate_normals<CGAL::Sequential_tag>(ps, kk, ps.parameters()); }},
+    {"jet_estimate_normals (degree 2)", [](Point_set& ps, unsigned int kk) {
+       CGAL::jet_estimate_normals<CGAL::Sequential_tag>(ps, kk, ps.parameters().degree_fitting(2)); }},
+    {"wavejet_estimate_normals (order 2)", [](Point_set& ps, unsigned int kk) { wavejet_normals(ps, kk, 0, false); }},
+    {"wavejet_estimate_normals, robust_iterations(3)", [](Point_set& ps, unsigned int kk) { wavejet_normals(ps, kk, 3, false); }},
+    {"wavejet_estimate_normals, use_neighbor_normals(true)", [](Point_set& ps, unsigned int kk) {
+       wavejet_normals(ps, kk, 0, true); }}};
+
+  CGAL::Real_timer total;
+  total.start();
+  std::vector<Result> results;
+  std::ostringstream setup;
+  for(const std::string& file : meshes)
+  {
+    Mesh truth;
+    if(!CGAL::IO::read_polygon_mesh(file, truth) || truth.is_empty() || !CGAL::is_triangle_mesh(truth)
+       || !CGAL::is_closed(truth))
+    {
+      std::cerr << "cannot read " << file << " as a closed triangle mesh\n";
+      return 1;
+    }
+    const std::string mesh_name = file.substr(file.find_last_of('/') + 1);
+    const CGAL::Bbox_3 box = PMP::bbox(truth);
+    const double diagonal = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin())
+                                      + CGAL::square(box.zmax() - box.zmin()));
+    const double outward = PMP::volume(truth) > 0 ? 1. : -1.; // faces oriented outward or inward
+    Tree truth_tree(faces(truth).first, faces(truth).second, truth);
+    truth_tree.accelerate_distance_queries();
+    const std::vector<Point> truth_samples = sample(truth, samples, 7);
+    const std::vector<Point> clean = sample(truth, n, 42);
+    setup << "- `" << mesh_name << "`: " << truth.number_of_vertices() << " vertices, " << truth.number_of_faces()
+          << " triangles, bounding-box diagonal " << fmt(diagonal, 4) << "; average spacing of the " << n
+          << " clean samples (6 neighbors): "
+          << fmt(CGAL::compute_average_spacing<CGAL::Sequential_tag>(clean, 6) / diagonal * 100., 3) << "% of the diagonal.\n";
+
+    for(const Condition& c : conditions)
+    {
+      // The scan: the clean samples + Gaussian noise; a fraction of them moved off the surface by a
+      // uniform vector of a ball of radius 2.5% of the diagonal (the same points for every estimator).
+      std::mt19937 engine(1000u + unsigned(&c - conditions.data()));
+      std::normal_distribution<double> gauss(0., c.sigma * diagonal);
+      std::uniform_real_distribution<double> uniform(-1., 1.);
+      Point_set scan;
+      scan.add_normal_map();
+      Point_set::Property_map<unsigned char> is_outlier = scan.add_property_map<unsigned char>("outlier", 0).first;
+      const std::size_t stride = c.outlier_fraction > 0. ? std::size_t(1. / c.outlier_fraction + 0.5) : 0;
+      for(std::size_t i = 0; i < clean.size(); ++i)
+      {
+        Vector d(0, 0, 0);
+        if(c.sigma > 0.) d = Vector(gauss(engine), gauss(engine), gauss(engine));
+        const Point_set::iterator it = scan.insert(clean[i] + d);
+        if(stride > 0 && i % stride == 0)
+        {
+          Vector b;
+          do b = Vector(uniform(engine), uniform(engine), uniform(engine)); while(b.squared_length() > 1.);
+          scan.point(*it) = scan.point(*it) + 0.025 * diagonal * b;
+          is_outlier[*it] = 1;
+        }
+      }
+
+      // The workflow's outlier removal (wavejet_reconstruction_workflow.cpp): average distance to
+      // 24 neighbors above twice its average over all points.
+      const std::size_t input = scan.size();
+      const double input_spacing = CGAL::compute_average_spacing<CGAL::Sequential_tag>(scan, 24);
+      scan.remove(CGAL::remove_outliers<CGAL::Sequential_tag>(
+                    scan, 24, scan.parameters().threshold_percent(100.).threshold_distance(2. * input_spacing)),
+                  scan.end());
+      scan.collect_garbage();
+      std::size_t outliers_left = 0;
+      for(Point_set::Index i : scan) outliers_left += is_outlier[i];
+      std::cout << mesh_name << ", " << c.name << ": " << input << " points, " << scan.size()
+                << " after remove_outliers (" << outliers_left << " outliers left)" << std::endl;
+
+      for(const Estimator& e : estimators)
+      {
+        Result r;
+        r.mesh = mesh_name; r.condition = c.name; r.estimator = e.name;
+        r.input = input; r.after_outlier_removal = scan.size();
+        Point_set points = scan;
+        CGAL::Real_timer timer;
+        timer.start();
+        e.run(points, k);
+        timer.stop();
+        r.normal_seconds = timer.time();
+        // No collect_garbage(): `points` keeps the indices of `scan`, so scan's maps read it.
+        points.remove(CGAL::mst_orient_normals(points, k, points.parameters()), points.end());
+        r.oriented = points.size();
+
+        // Normal error against the true (outward) normal of the closest triangle, outliers excluded.
+        double angle_sum = 0.;
+        std::size_t counted = 0, flipped = 0;
+        for(Point_set::Index i : points)
+        {
+          if(is_outlier[i]) continue;
+          const Vector t = outward * PMP::compute_face_normal(truth_tree.closest_point_and_primitive(points.point(i)).second, truth);
+          const Vector m = points.normal(i);
+          const double cosine = CGAL::to_double(t * m) / std::sqrt(CGAL::to_double(m.squared_length()));
+          const double angle = std::acos(std::clamp(std::abs(cosine), 0., 1.)) * 180. / CGAL_PI;
+          angle_sum += angle;
+          flipped += cosine < 0;
+          ++counted;
+        }
+        r.mean_angle = angle_sum / double(counted);
+        r.flipped_percent = 100. * double(flipped) / double(counted);
+
+        // Poisson reconstruction, as in the workflow (size parameter: average spacing).
+        Mesh reconstruction;
+        const double spacing = CGAL::compute_average_spacing<CGAL::Sequential_tag>(points, 6);
+        r.reconstructed = CGAL::poisson_surface_reconstruction_delaunay(
+                            points.begin(), points.end(), points.point_map(), points.normal_map(), reconstruction, spacing)
+                          && reconstruction.number_of_faces() > 0;
+        if(r.reconstructed)
+        {
+          r.vertices = reconstruction.number_of_vertices();
+          Tree tree(faces(reconstruction).first, faces(reconstruction).second, reconstruction);
+          tree.accelerate_distance_queries();
+          double max_to = 0., max_from = 0.;
+          summarize(distances(sample(reconstruction, samples, 11), truth_tree), r.to_true_mean, r.to_true_p95, max_to);
+          summarize(distances(truth_samples, tree), r.from_true_mean, r.from_true_p95, max_from);
+          for(double* v : {&r.to_true_mean, &r.to_true_p95, &r.from_true_mean, &r.from_true_p95}) *v *= 100. / diagonal;
+          r.hausdorff = std::max(max_to, max_from) * 100. / diagonal;
+        }
+        std::cout << "  " << e.name << ": normals " << fmt(r.normal_seconds) << " s, mean angle " << fmt(r.mean_angle, 2)
+                  << " deg, flipped " << fmt(r.flipped_percent, 2) << "%, reconstruction -> truth mean "
+                  << fmt(r.to_true_mean) << "% p95 " << fmt(r.to_true_p95) << "%, truth -> reconstruction p95 "
+                  << fmt(r.from_true_p95) << "% (" << fmt(total.time(), 0) << " s so far)" << std::endl;
+        results.push_back(r);
+      }
+    }
+  }
+  total.stop();
+
+  std::ostringstream md;
+  const std::time_t now = std::time(nullptr);
+  char date[64];
+  std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
+  md << "# Normal estimators in CGAL's reconstruction workflow\n\n"
+     << "Generated by `benchmark/Wavejets/bench_workflows.cpp` on " << date << " in " << fmt(total.time(), 0)
+     << " s, " << std::thread::hardware_concurrency() << " hardware threads (the machine was shared with other builds"
+     << ": the times are indicative). Command (from the repository root):\n\n"
+     << "    cmake -S . -B build/bench -DCMAKE_BUILD_TYPE=Release && cmake --build build/bench --target bench_workflows -j1\n"
+     << "    build/bench/benchmark/Wavejets/" << command.str() << "\n\n"
+     << "## Setup\n\n"
+     << "The workflow of `examples/Wavejets/wavejet_reconstruction_workflow.cpp` (CGAL's reconstruction tutorial) with "
+     << "each normal estimator in turn, everything else identical:\n\n"
+     << "1. A scan: " << n << " points sampled uniformly on a closed mesh (`CGAL::Random_points_in_triangle_mesh_3`, fixed "
+     << "seed), plus Gaussian noise of standard deviation sigma per coordinate (sigma in % of the bounding-box diagonal); "
+     << "with outliers, every 20th point (5%) is moved by a uniform random vector of a ball of radius 2.5% of the diagonal.\n"
+     << "2. `remove_outliers` (24 neighbors, `threshold_percent(100).threshold_distance(2 x average spacing to 24 neighbors)`). No grid "
+     << "simplification (the samples are uniform already).\n"
+     << "3. Normals with k = " << k << " neighbors, `Sequential_tag` (this step alone is timed): `pca_estimate_normals`; "
+     << "`jet_estimate_normals` (degree 2, its default); `wavejet_estimate_normals` (order 2, its default); "
+     << "`wavejet_estimate_normals` with `robust_iterations(3)`; `wavejet_estimate_normals` with `use_neighbor_normals(true)` "
+     << "(Hermite fit: heights and the neighbors' normals, which it first estimates itself with its plain fit).\n"
+     << "4. `mst_orient_normals` (k = " << k << "); points it cannot orient are removed.\n"
+     << "5. `poisson_surface_reconstruction_delaunay` with the average spacing (6 neighbors) as size parameter.\n"
+     << "6. Distances, in % of the bounding-box diagonal, through AABB trees: from " << samples << " points sampled on the "
+     << "reconstruction to the true mesh (mean, 95th percentile) and from " << samples << " points sampled on the true mesh "
+     << "to the reconstruction (mean, 95th percentile; large where the reconstruction misses or adds a part); "
+     << "Hausdorff = the largest of all these distances (a sampled approximation of the symmetric Hausdorff distance).\n"
+     << "7. Normal error after orientation, outliers excluded: mean angle to the true normal of the closest triangle "
+     << "(unoriented, degrees), and the % of normals pointing inward (orientation failures).\n\n"
+     << setup.str() << "\n";
+  for(const std::string& file : meshes)
+  {
+    const std::string mesh_name = file.substr(file.find_last_of('/') + 1);
+    md << "## `" << mesh_name << "`\n\n"
+       << "| scan | normals | normal step (s) | mean angle (deg) | inward (%) | rec. to true: mean | p95 | true to rec.: mean | p95 | Hausdorff |\n"
+       << "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+    for(const Result& r : results)
+    {
+      if(r.mesh != mesh_name) continue;
+      md << "| " << r.condition << " (" << r.after_outlier_removal << " pts) | " << r.estimator << " | " << fmt(r.normal_seconds, 3)
+         << " | " << fmt(r.mean_angle, 2) << " | " << fmt(r.flipped_percent, 2) << " | ";
+      if(r.reconstructed)
+        md << fmt(r.to_true_mean) << " | " << fmt(r.to_true_p95) << " | " << fmt(r.from_true_mean) << " | "
+           << fmt(r.from_true_p95) << " | " << fmt(r.hausdorff, 2) << " |\n";
+      else
+        md << "failed | | | | |\n";
+    }
+    md << "\n";
+  }
+  std::cout << "\n" << md.str();
+  if(write)
+  {
+    std::ofstream f(out);
+    f << md.str();
+    if(!f) { std::cerr << "cannot write " << out << "\n"; return 1; }
+    std::cout << "written to " << out << "\n";
+  }
+  return 0;
+}
