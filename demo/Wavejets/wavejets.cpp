@@ -111,13 +111,13 @@ const Flag_info flags[] = {
   {"--consistent-normals", "", POSITIONS | NORMAL_FILTER, "leave out the neighbors whose normal points more than 90 degrees away from the point's (the other side of a thin part, e.g. ears)"},
   {"--threads", "N", FITS | RENDER, "worker threads (default: all cores; 1: sequential, same results)"},
   {"--ascii", "", FITS, "write ASCII PLY (default: binary little-endian PLY, doubles)"},
-  {"--width", "W", RENDER, "image width in pixels, all panels together (default 800, 1600 with --compare)"},
+  {"--width", "W", RENDER, "image width in pixels, all panels together (default 800 per panel)"},
   {"--height", "H", RENDER, "image height in pixels (default 800)"},
   {"--view", "X,Y,Z", RENDER, "direction from the object toward the camera, orthographic (default 0,0,1)"},
   {"--up", "X,Y,Z", RENDER, "world direction shown upward (default 0,1,0)"},
   {"--splat", "F", RENDER, "splat radius of a point set in average point spacings (default 1.2)"},
   {"--color-by", "NAME", RENDER, "color by a scalar PLY property, blue < 0 < red (e.g. mean_curvature)"},
-  {"--compare", "", RENDER, "render two point sets A and B side by side with the same camera"},
+  {"--compare", "", RENDER, "render A and B (up to 8 inputs: A B C ... OUT.png) side by side with the same camera"},
   {"--quiet", "", FITS | RENDER, "no progress bar and no summary (errors are still printed)"},
   {"--help", "", FITS | RENDER, "show this help (-h)"},
 };
@@ -345,15 +345,15 @@ Options parse_command_line(int argc, char** argv)
     else if(a == "--color-by") o.color_by = value;
     else if(a == "--compare") o.compare = true;
   }
-  const std::size_t expected = o.compare ? 3 : 2;
-  if(o.files.size() != expected)
+  // render --compare takes 2 to 8 inputs (side by side, one camera), then OUT.png.
+  if(o.compare ? (o.files.size() < 3 || o.files.size() > 9) : o.files.size() != 2)
     throw Usage_error(std::string(o.command->name) + " expects " + o.command->synopsis + " (got " +
                       std::to_string(o.files.size()) + " file names)");
   const std::string out_ext = lower_extension(o.files.back());
   if(bit == RENDER && out_ext != "png") throw Usage_error("the output of render must be a .png file: " + o.files.back());
   if(bit != RENDER && out_ext != "ply" && out_ext != "off" && out_ext != "obj")
     throw Usage_error("the output must be a .ply file (or .off / .obj for a mesh input): " + o.files.back());
-  if(o.width == 0) o.width = o.compare ? 1600 : 800;
+  if(o.width == 0) o.width = 800 * int(o.files.size() - 1);   // 800 per panel
   return o;
 }
 
@@ -1023,8 +1023,13 @@ int run_render(const Options& o, Progress& progress)
                              : "a mesh of " + std::to_string(c.faces.size()) + " faces";
     };
     if(clouds.size() == 1) s << "drew " << what(clouds[0]) << " of " << o.files[0];
-    else s << "compared " << o.files[0] << " (left, " << what(clouds[0]) << ") with " << o.files[1]
-           << " (right, " << what(clouds[1]) << ")";
+    else if(clouds.size() == 2)
+      s << "compared " << o.files[0] << " (left, " << what(clouds[0]) << ") with " << o.files[1]
+        << " (right, " << what(clouds[1]) << ")";
+    else {
+      s << "compared, left to right,";
+      for(std::size_t i = 0; i < clouds.size(); ++i) s << (i ? "; " : " ") << o.files[i] << " (" << what(clouds[i]) << ")";
+    }
     s << "; wrote " << out_path << " (" << image.width << " x " << image.height << " PNG) in " << seconds_since(t0) << " s.";
     std::cout << s.str() << std::endl;
   }

@@ -307,6 +307,10 @@ case $case_name in
     run render --compare "$mesh" mp.ply mcmp.png --width 640 --height 320 | tee summary.txt || fail "compare of meshes failed"
     "$check" png mcmp.png 640 320 || fail "compare check (mesh)"
     grep -q "(left, a mesh of 7598 faces) with mp.ply (right, a mesh of 7598 faces)" summary.txt || fail "compare summary"
+    # Three panels, one camera (the paper's gain series).
+    run render --compare "$mesh" mp.ply "$mesh" m3.png --width 600 --height 200 | tee summary.txt || fail "compare of three failed"
+    "$check" png m3.png 600 200 || fail "compare check (three)"
+    grep -q "compared, left to right," summary.txt || fail "compare summary (three)"
     ;;
   *) fail "unknown case"; ;;
 esac
