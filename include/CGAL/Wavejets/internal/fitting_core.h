@@ -347,16 +347,8 @@ private:
     for(std::size_t it = 0; it < robust_iterations; ++it)
     {
       // Tukey biweight on residuals scaled by 1.4826 MAD.
-      residual_.assign(L, 0.);
-      for(std::size_t b = 0; b < B; ++b)
-      {
-        const double* column = A + b * P;
-        for(std::size_t l = 0; l < L; ++l) residual_[l] += column[l] * c[b];
-      }
-      for(std::size_t l = 0; l < L; ++l) residual_[l] = std::abs(h[l] - residual_[l]);
-      sorted_.assign(residual_.begin(), residual_.end());
-      std::nth_element(sorted_.begin(), sorted_.begin() + L / 2, sorted_.end());
-      const double scale = 1.4826 * sorted_[L / 2];
+      absolute_residuals(A, P, L, B, c);
+      const double scale = 1.4826 * median(residual_.data(), L);
       if(!(scale > 1e-14))
         break; // (near) exact fit: nothing to reweight
       const double cutoff = 4.685 * scale;
@@ -455,13 +447,7 @@ private:
 
     for(std::size_t it = 0; it < robust_iterations; ++it)
     {
-      residual_.assign(R, 0.);
-      for(std::size_t b = 0; b < B; ++b)
-      {
-        const double* column = A + b * P;
-        for(std::size_t r = 0; r < R; ++r) residual_[r] += column[r] * c[b];
-      }
-      for(std::size_t r = 0; r < R; ++r) residual_[r] = std::abs(h[r] - residual_[r]);
+      absolute_residuals(A, P, R, B, c);
       const double height_cutoff = 4.685 * 1.4826 * median(residual_.data(), L);
       const double slope_cutoff = M > 0 ? 4.685 * 1.4826 * median(residual_.data() + L, 2 * M) : 0.;
       const bool reweight_heights = height_cutoff > 4.685 * 1e-14, reweight_slopes = slope_cutoff > 4.685 * 1e-14;
@@ -489,7 +475,20 @@ private:
     return true;
   }
 
-  // Median of values[0..n-1] (the upper one for even n, as the plain IRLS); n > 0.
+  // residual_[r] = |h_r - (A c)_r| for the rows r < R of the system [A | h] (column stride P).
+  void absolute_residuals(const double* A, std::size_t P, std::size_t R, std::size_t B, const std::vector<double>& c)
+  {
+    const double* h = A + B * P;
+    residual_.assign(R, 0.);
+    for(std::size_t b = 0; b < B; ++b)
+    {
+      const double* column = A + b * P;
+      for(std::size_t r = 0; r < R; ++r) residual_[r] += column[r] * c[b];
+    }
+    for(std::size_t r = 0; r < R; ++r) residual_[r] = std::abs(h[r] - residual_[r]);
+  }
+
+  // Median of values[0..n-1] (the upper one for even n); n > 0.
   double median(const double* values, std::size_t n)
   {
     sorted_.assign(values, values + n);
