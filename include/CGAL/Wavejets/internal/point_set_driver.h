@@ -66,7 +66,6 @@ struct Driver_settings
   bool use_neighbor_normals = false;    // Hermite fit (normals: the input's, or estimated first)
 };
 
-/// Reads the settings shared by all functions. `default_order` and `default_tangent_plane_order`
 /// The requested order K: `Wavejets::parameters::order`, or \cgal's `degree_fitting` (the name the jet
 /// functions use, so that a call to `jet_estimate_normals()` keeps its meaning when the function is
 /// swapped). Both may be given only with the same value.
@@ -107,6 +106,7 @@ void check_degree_monge(const NP& np, const char* fn, bool computes_curvatures)
   }
 }
 
+/// Reads the settings shared by all functions. `default_order` and `default_tangent_plane_order`
 /// (0: the order itself) differ per function; `computes_curvatures` accepts `degree_monge(2)`.
 template <class NP>
 Driver_settings read_driver_settings(unsigned int k, const NP& np, std::size_t default_order, const char* fn,
