@@ -105,7 +105,7 @@ Wavejets::Processing_report wavejet_enhance_normals(PointRange& points, unsigned
       normals[fp.index] = (f.n - fx * f.u - fy * f.v).normalized();
     });
 
-  commit(input, run, np, [&](std::size_t i, auto& key) {
+  commit(input, run, np, [&](std::size_t i, auto&& key) {
     put(input.normal_map, key, Input::to_vector(normals[i]));
   });
   return run.report;

@@ -162,7 +162,7 @@ Wavejets::Processing_report wavejet_enhance_positions(PointRange& points, unsign
     });
 
   Wavejets::Processing_report report = run.report;
-  commit(input, run, np, [&](std::size_t i, auto& key) {
+  commit(input, run, np, [&](std::size_t i, auto&& key) {
     put(input.point_map, key, get(input.point_map, key) + Input::to_vector(motion[i]));
     if(with_normals) put(input.normal_map, key, Input::to_vector(normals[i]));
     report.number_of_clamped_points += clamped[i];

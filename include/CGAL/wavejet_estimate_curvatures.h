@@ -127,7 +127,7 @@ Wavejets::Processing_report wavejet_estimate_curvatures(PointRange& points, unsi
       curvatures[fp.index] = graph_curvature(fp.fit.curvature_derivatives, f.u, f.v, f.n);
     });
 
-  commit(input, run, np, [&](std::size_t i, auto& key) {
+  commit(input, run, np, [&](std::size_t i, auto&& key) {
     const Curvature_info& c = curvatures[i];
     put_if_given(get_parameter(np, wnp::mean_curvature_map), key, FT(c.mean));
     put_if_given(get_parameter(np, wnp::gaussian_curvature_map), key, FT(c.gaussian));

@@ -199,7 +199,7 @@ Wavejets::Processing_report wavejet_estimate_normals(PointRange& points, unsigne
   const Driver_run run = fit_each_point<ConcurrencyTag>(input, settings, read_callback(np),
     [&](const Fitted_point& fp) { normals[fp.index] = surface_normal(fp); });
 
-  commit(input, run, np, [&](std::size_t i, auto& key) {
+  commit(input, run, np, [&](std::size_t i, auto&& key) {
     put(input.normal_map, key, Input::to_vector(normals[i]));
   });
   return run.report;

@@ -81,7 +81,7 @@ static void check_surface_mesh(const Mesh& original)
   // 1. Positions, moved along the Wavejet normals; Wavejet normals written to the mesh's map.
   {
     Mesh m = mesh;
-    Mesh::Property_map<Vertex, Vector> n = m.property_map<Vertex, Vector>("v:normal").first;
+    Mesh::Property_map<Vertex, Vector> n = m.add_property_map<Vertex, Vector>("v:normal").first;
     Mesh::Property_map<Vertex, bool> fitted = m.add_property_map<Vertex, bool>("v:fitted", false).first;
     auto vs = vertices(m);
     const CGAL::Wavejets::Processing_report r = CGAL::wavejet_enhance_positions<Tag>(
@@ -124,7 +124,7 @@ static void check_surface_mesh(const Mesh& original)
   // 3. Normals, oriented like the vertex normals.
   {
     Mesh m = mesh;
-    Mesh::Property_map<Vertex, Vector> n = m.property_map<Vertex, Vector>("v:normal").first;
+    Mesh::Property_map<Vertex, Vector> n = m.add_property_map<Vertex, Vector>("v:normal").first;
     auto vs = vertices(m);
     CGAL::wavejet_estimate_normals<Tag>(vs, k, WP::order(2).orient_with_input_normals(true).point_map(m.points()).normal_map(n));
     std::vector<Pwn> v = reference_input;
@@ -141,7 +141,7 @@ static void check_surface_mesh(const Mesh& original)
   // 4. Curvatures into mesh property maps.
   {
     Mesh m = mesh;
-    Mesh::Property_map<Vertex, Vector> n = m.property_map<Vertex, Vector>("v:normal").first;
+    Mesh::Property_map<Vertex, Vector> n = m.add_property_map<Vertex, Vector>("v:normal").first;
     Mesh::Property_map<Vertex, double> H = m.add_property_map<Vertex, double>("v:H", 0.).first;
     Mesh::Property_map<Vertex, double> G = m.add_property_map<Vertex, double>("v:K", 0.).first;
     auto vs = vertices(m);
@@ -169,7 +169,7 @@ static void check_surface_mesh(const Mesh& original)
   // 5. Normal filter with a complex gain (twist).
   {
     Mesh m = mesh;
-    Mesh::Property_map<Vertex, Vector> n = m.property_map<Vertex, Vector>("v:normal").first;
+    Mesh::Property_map<Vertex, Vector> n = m.add_property_map<Vertex, Vector>("v:normal").first;
     auto vs = vertices(m);
     CGAL::wavejet_enhance_normals<Tag>(vs, k, std::complex<double>(1., 1.), WP::order(4).point_map(m.points()).normal_map(n));
     std::vector<Pwn> v = reference_input;
