@@ -168,7 +168,7 @@ struct Point_set_input
 
   /// `read_normals`: copy the input normals (for orientation, seeding or restriction).
   Point_set_input(PointRange& range, const NP& np, bool read_normals)
-    : point_map(NP_helper::get_point_map(range, np)), normal_map(NP_helper::get_normal_map(range, np)),
+    : point_map(NP_helper::get_point_map(range, np)), normal_map(read_normal_map(range, np)),
       has_normals(has_normal_map(range, np))
   {
     for(iterator it = range.begin(); it != range.end(); ++it) items.push_back(it);
@@ -190,6 +190,16 @@ struct Point_set_input
         normals.emplace_back(to_double(n.x()), to_double(n.y()), to_double(n.z()));
       }
     }
+  }
+
+  /// The normal map, or without one CGAL's default map (a constant) built with a zero vector: its
+  /// default constructor copies an uninitialized `Vector_3` (g++ 12 warns, -Wuninitialized). Never read then.
+  static Normal_map read_normal_map(PointRange& range, const NP& np)
+  {
+    if constexpr(may_have_normal_map<PointRange, NP>())
+      return NP_helper::get_normal_map(range, np);
+    else
+      return Normal_map(typename Normal_map::value_type(0., 0., 0.));
   }
 
   std::size_t size() const { return items.size(); }
