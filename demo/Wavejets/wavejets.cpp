@@ -6,6 +6,7 @@
 #include <CGAL/Point_set_3.h>
 #include <CGAL/Wavejets/internal/cgal_compatibility.h> // find_property_map: CGAL 5.5 and 6
 #include <CGAL/Point_set_3/IO.h>
+#include <CGAL/Wavejets/Function_defaults.h>
 #include <CGAL/Wavejets/version.h>
 #include <CGAL/IO/OBJ.h>
 #include <CGAL/IO/OFF.h>
@@ -632,12 +633,12 @@ void ensure_oriented_normals(Point_set& points, const Neighborhood& n, std::size
                       "spanning tree (18 neighbors; " + std::to_string(unoriented) + " could not be oriented).");
 }
 
-std::string report_text(const CGAL::Wavejets::Processing_report& r, bool clamp)
+std::string report_text(const CGAL::Wavejets::Processing_report& r)
 {
   std::string s = std::to_string(r.number_of_fitted_points) + " points fitted, " +
                   std::to_string(r.number_of_unfitted_points) + " not fitted (left unchanged), " +
                   std::to_string(r.number_of_reduced_order_points) + " at reduced order";
-  if(clamp) s += ", " + std::to_string(r.number_of_clamped_points) + " displacements clamped";
+  if(r.moves_points) s += ", " + std::to_string(r.number_of_clamped_points) + " displacements clamped";
   return s;
 }
 
@@ -787,6 +788,14 @@ bool set_face_normals(Point_set& points, const wavejets_demo::Faces& faces, std:
   return missing < points.size();
 }
 
+// The library function behind a fitting command (its defaults are the command's).
+CGAL::Wavejets::Point_set_function library_function(unsigned command_bit)
+{
+  typedef CGAL::Wavejets::Point_set_function F;
+  return command_bit == NORMALS ? F::ESTIMATE_NORMALS : command_bit == CURVATURE ? F::ESTIMATE_CURVATURES
+       : command_bit == POSITIONS ? F::ENHANCE_POSITIONS : F::ENHANCE_NORMALS;
+}
+
 int run_fit_command_on_input(const Options& o, Progress& progress)
 {
   const Clock::time_point t0 = Clock::now();
@@ -798,7 +807,7 @@ int run_fit_command_on_input(const Options& o, Progress& progress)
     throw Usage_error(in_path + " is a point set (no faces): write it as .ply, not " + out_path);
   const Neighborhood n = choose_neighborhood(o, points, in_path);
   const unsigned bit = o.command->bit;
-  const std::size_t order = o.order ? o.order : (bit == NORMALS || bit == CURVATURE ? 2 : 4);
+  const std::size_t order = o.order ? o.order : CGAL::Wavejets::function_defaults(library_function(bit)).order;
   Run_log log;
   // A mesh without normals: its faces give oriented vertex normals (no estimation, no MST).
   if(in.is_mesh() && !in.had_normals && set_face_normals(points, in.faces, nullptr))
@@ -817,7 +826,7 @@ int run_fit_command_on_input(const Options& o, Progress& progress)
                                   progress.stage("normals")));
     progress.done();
     log.fit_seconds += seconds_since(t);
-    what = "Normals (order " + std::to_string(order) + ", oriented like the input normals): " + report_text(r, false) + ".";
+    what = "Normals (order " + std::to_string(order) + ", oriented like the input normals): " + report_text(r) + ".";
   } else if(bit == NORMALS) {
     ensure_oriented_normals(points, n, order, &fitted_map, progress, log);
   } else {
@@ -848,7 +857,7 @@ int run_fit_command_on_input(const Options& o, Progress& progress)
       points.remove_property_map(d1);
       points.remove_property_map(d2);
       for(Point_set::Index i : points) quality[i] = H[i];
-      what = "Curvature (order " + std::to_string(order) + "): " + report_text(r, false) +
+      what = "Curvature (order " + std::to_string(order) + "): " + report_text(r) +
              ". Over the fitted points, 5% / median / 95%: H " + percentiles(points, H, fitted) + ", K " +
              percentiles(points, K, fitted) + ", k1 " + percentiles(points, k1, fitted) + ", k2 " +
              percentiles(points, k2, fitted) + ".";
@@ -886,7 +895,7 @@ int run_fit_command_on_input(const Options& o, Progress& progress)
              (!o.has_clamp ? std::string("Rf/2") : std::isinf(o.max_displacement) ? std::string("none") : format(o.max_displacement)) +
              (o.along_input_normals ? std::string(", along the input normals") : std::string()) +
              (o.consistent_normals ? std::string(", neighbors with consistent normals") : std::string()) +
-             "): " + report_text(r, true) + "; " + normals_of_result + ".";
+             "): " + report_text(r) + "; " + normals_of_result + ".";
     } else {
       const CGAL::Wavejets::Processing_report r = CGAL::wavejet_enhance_normals<Concurrency_tag>(
         points, n.k, o.gain,
@@ -897,7 +906,7 @@ int run_fit_command_on_input(const Options& o, Progress& progress)
       what = "Normal enhancement (order " + std::to_string(order) + ", gain " + g + ", evaluation radius " +
              (o.evaluation_radius > 0 ? format(o.evaluation_radius) : std::string("Rf")) +
              (o.consistent_normals ? std::string(", neighbors with consistent normals") : std::string()) +
-             "): " + report_text(r, false) + ".";
+             "): " + report_text(r) + ".";
     }
     log.fit_seconds += seconds_since(t);
   }

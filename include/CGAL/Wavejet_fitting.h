@@ -26,6 +26,8 @@
 #include <cstddef>
 #include <iostream>
 #include <iterator>
+#include <stdexcept>
+#include <string>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -186,7 +188,7 @@ public:
     /// (|n| > k, parity mismatch, or k > order()).
     Complex coefficient(int k, int n) const
     {
-      if(!is_valid() || !Wavejets::internal::is_wavejet_index(k, n) || std::size_t(k) > m_order)
+      if(!is_valid() || !Wavejets::internal::is_wavejet_index(k, n) || std::size_t(k) >= stored_orders())
         return Complex(0., 0.);
       return Wavejets::internal::complex_coefficient(m_coefficients.data(), k, n);
     }
@@ -201,9 +203,9 @@ public:
     /// units and is not clamped to `radius()` (the point-set functions clamp it; see the class description).
     Complex enclosed_area_coefficient(int n, double s) const
     {
-      if(!is_valid() || std::size_t(std::abs(n)) > m_order)
+      if(!is_valid() || std::size_t(std::abs(n)) >= stored_orders())
         return Complex(0., 0.);
-      return Wavejets::internal::enclosed_area(m_coefficients.data(), m_order, n, s);
+      return Wavejets::internal::enclosed_area(m_coefficients.data(), stored_orders() - 1, n, s);
     }
     /// a_n(Rf).
     Complex enclosed_area_coefficient(int n) const { return enclosed_area_coefficient(n, m_radius); }
@@ -217,9 +219,10 @@ public:
     /// Gaussian curvature K_G = k1 k2 (does not depend on the orientation).
     FT gaussian_curvature() const { return FT(m_gaussian); }
     /// `i == 0`: maximal, `i == 1`: minimal principal curvature.
+    /// \throws std::out_of_range if `i > 1`.
     FT principal_curvatures(std::size_t i) const
     {
-      CGAL_precondition(i < 2);
+      if(i > 1) throw std::out_of_range("Wavejet_form::principal_curvatures: index " + std::to_string(i) + " > 1");
       return FT(i == 0 ? m_k1 : m_k2);
     }
     /// @}
@@ -235,7 +238,7 @@ public:
       m_normal = -m_normal;
       m_frame_normal = -m_frame_normal;
       m_v = -m_v;
-      for(std::size_t k = 0; k <= m_order; ++k)
+      for(std::size_t k = 0; k < stored_orders(); ++k)
       {
         const std::size_t o = Wavejets::internal::order_offset(k);
         if(k % 2 == 0) m_coefficients[o] = -m_coefficients[o];
@@ -278,6 +281,14 @@ public:
 
   private:
     friend class Wavejet_fitting;
+    // Number of orders k = 0, 1, ... whose coefficients are all stored: `order() + 1`, unless the
+    // vector was resized through the writable `coefficients()`; every read stays within them.
+    std::size_t stored_orders() const
+    {
+      std::size_t orders = 0;
+      while(orders <= m_order && Wavejets::internal::number_of_coefficients(orders) <= m_coefficients.size()) ++orders;
+      return orders;
+    }
     Wavejets::Fit_status m_status = Wavejets::Fit_status::TOO_FEW_POINTS;
     std::size_t m_order = 0, m_number_of_points = 0, m_corrections = 0;
     double m_radius = 0., m_final_tilt = 0.;
@@ -306,7 +317,8 @@ public:
          range has `options().neighbors_per_coefficient * (K+1)(K+2)/2` points and the system has full rank.
   \return the fitted form; a range too small or degenerate gives a form with `is_valid() == false`
           and the reason in `Wavejet_form::status()`.
-  \pre `order >= 1`.
+  \throws std::invalid_argument if `order == 0` (in every build, like the point-set functions'
+          bad arguments; a fit that fails because of its points is not an error but a status).
   */
   template <class InputIterator>
   Wavejet_form operator()(InputIterator begin, InputIterator end, std::size_t order)
@@ -375,9 +387,10 @@ public:
   /// the convention of `Monge_via_jet_fitting::pca_basis()`), and unit eigenvector; `i == 0` largest,
   /// `i == 2` smallest (the PCA normal); the three eigenvectors form a direct orthonormal basis.
   /// Fitted without a normal and with no accepted re-fit, the form's frame (u, v, n) is this basis.
+  /// \throws std::out_of_range if `i > 2`.
   std::pair<FT, Vector_3> pca_basis(std::size_t i) const
   {
-    CGAL_precondition(i < 3);
+    if(i > 2) throw std::out_of_range("Wavejet_fitting::pca_basis: index " + std::to_string(i) + " > 2");
     const Eigen::Vector3d e = m_result.pca_vectors.col(int(i));
     return std::make_pair(FT(m_result.pca_values(int(i))), Vector_3(e.x(), e.y(), e.z()));
   }
@@ -387,7 +400,7 @@ private:
   Wavejet_form fit(InputIterator begin, InputIterator end, std::size_t order, const Eigen::Vector3d* hint,
                    const Eigen::Vector3d* neighbor_normals = nullptr)
   {
-    CGAL_precondition(order >= 1);
+    if(order < 1) throw std::invalid_argument("Wavejet_fitting: the order must be >= 1");
     Wavejet_form form;
     m_offsets.clear();
     if(begin == end)
@@ -434,7 +447,7 @@ private:
     form.m_v = to_vector(r.frame.v);
     form.m_frame_normal = to_vector(r.frame.n);
     const double fx = r.order >= 1 ? form.m_coefficients[1] : 0., fy = r.order >= 1 ? form.m_coefficients[2] : 0.;
-    form.m_normal = to_vector((r.frame.n - fx * r.frame.u - fy * r.frame.v).normalized());
+    form.m_normal = to_vector(Wavejets::internal::graph_normal(r.frame, fx, fy));
 
     Wavejets::internal::Curvature_info ci = Wavejets::internal::graph_curvature(
       r.curvature_derivatives, r.curvature_frame.u, r.curvature_frame.v, r.curvature_frame.n);

@@ -56,12 +56,7 @@ orientation to PCA). Every new normal is computed from the original input before
     \cgalParamType{`std::size_t`, `>= 1`}
     \cgalParamDefault{4}
   \cgalParamNEnd
-  \cgalParamNBegin{degree_fitting}
-    \cgalParamDescription{\cgal's name of the order, as in `jet_estimate_normals()`: the same as
-                          `Wavejets::parameters::order` (if both are given, they must be equal)}
-    \cgalParamType{an integer, `>= 1`}
-    \cgalParamDefault{4}
-  \cgalParamNEnd
+  \wavejetsDegreeFittingParameter{4}
   \cgalParamNBegin{Wavejets::parameters::evaluation_radius}
     \cgalParamDescription{the radius s of a_{-1}(s), in world units; clamped to Rf per point (0: Rf)}
     \cgalParamType{`double` (or `geom_traits::FT`), finite and `>= 0`}
@@ -79,33 +74,24 @@ Wavejets::Processing_report wavejet_enhance_normals(PointRange& points, unsigned
                                                     const NamedParameters& np = parameters::default_values())
 {
   using namespace Wavejets::internal;
-  using parameters::choose_parameter;
-  using parameters::get_parameter;
   typedef Point_set_input<PointRange, NamedParameters> Input;
   static_assert(may_have_normal_map<PointRange, NamedParameters>(), "Error: no normal map");
-  const char* fn = "wavejet_enhance_normals";
-  require(has_normal_map(points, np), fn, "the point set has no normal map");
-  require(std::isfinite(gain.real()) && std::isfinite(gain.imag()) && std::abs(gain) <= 1e100, fn,
+  const Driver_settings settings = read_settings(points, k, np, Wavejets::Point_set_function::ENHANCE_NORMALS);
+  require(std::isfinite(gain.real()) && std::isfinite(gain.imag()) && std::abs(gain) <= 1e100, settings.function,
           "the gain must be finite, |gain| <= 1e100");
-
-  const Driver_settings settings = read_driver_settings(k, np, 4, fn);
-  const double s = to_double(choose_parameter(get_parameter(np, Wavejets::internal_np::evaluation_radius), 0.));
-  require(std::isfinite(s) && s >= 0, fn, "evaluation_radius must be finite and >= 0");
-  const Input input(points, np, true);
+  const Input input(points, np, settings.read_input_normals);
 
   const double pi = 3.14159265358979323846;
   std::vector<Eigen::Vector3d> normals(input.size());
-  const Driver_run run = fit_each_point<ConcurrencyTag>(input, settings, read_callback(np),
+  const Driver_run run = fit_each_point<ConcurrencyTag>(input, settings,
     [&](const Fitted_point& fp) {
-      const double sigma = relative_evaluation_radius(s, fp.fit.radius);
+      const double sigma = fp.evaluation_radius_in_radii(settings.evaluation_radius);
       const std::complex<double> a = enclosed_area(fp.coefficients, fp.fit.order, -1, sigma, 3); // rescaled
       const std::complex<double> tilt = complex_coefficient(fp.coefficients, 1, -1) - pi * (gain - 1.) * a;
-      const double fx = 2. * tilt.real(), fy = 2. * tilt.imag();
-      const Frame& f = fp.fit.frame;
-      normals[fp.index] = (f.n - fx * f.u - fy * f.v).normalized();
+      normals[fp.index] = graph_normal(fp.fit.frame, 2. * tilt.real(), 2. * tilt.imag());
     });
 
-  commit(input, run, np, [&](std::size_t i, auto&& key) {
+  commit(input, run, [&](std::size_t i, auto&& key) {
     put(input.normal_map, key, Input::to_vector(normals[i]));
   });
   return run.report;

@@ -70,17 +70,8 @@ points is reported.
        defined over the full-order Wavejet's tangent plane), plus:
 
 \cgalNamedParamsBegin
-  \cgalParamNBegin{Wavejets::parameters::order}
-    \cgalParamDescription{the requested Wavejet order K (lowered per point by the adaptive order)}
-    \cgalParamType{`std::size_t`, `>= 1`}
-    \cgalParamDefault{4}
-  \cgalParamNEnd
-  \cgalParamNBegin{degree_fitting}
-    \cgalParamDescription{\cgal's name of the order, as in `jet_estimate_normals()`: the same as
-                          `Wavejets::parameters::order` (if both are given, they must be equal)}
-    \cgalParamType{an integer, `>= 1`}
-    \cgalParamDefault{4}
-  \cgalParamNEnd
+  \wavejetsOrderParameter{4}
+  \wavejetsDegreeFittingParameter{4}
   \cgalParamNBegin{Wavejets::parameters::evaluation_radius}
     \cgalParamDescription{the radius s of a_0(s), in world units; clamped to Rf per point (0: Rf)}
     \cgalParamType{`double` (or `geom_traits::FT`), finite and `>= 0`}
@@ -126,45 +117,32 @@ Wavejets::Processing_report wavejet_enhance_positions(PointRange& points, unsign
                                                       const NamedParameters& np = parameters::default_values())
 {
   using namespace Wavejets::internal;
-  using parameters::choose_parameter;
-  using parameters::get_parameter;
-  namespace wnp = Wavejets::internal_np;
   typedef Point_set_input<PointRange, NamedParameters> Input;
-  const char* fn = "wavejet_enhance_positions";
-
-  const Driver_settings settings = read_driver_settings(k, np, 4, fn);
-  require(std::isfinite(gain) && std::abs(gain) <= 1e100, fn, "the gain must be finite, |gain| <= 1e100");
-  const double s = to_double(choose_parameter(get_parameter(np, wnp::evaluation_radius), 0.));
-  require(std::isfinite(s) && s >= 0, fn, "evaluation_radius must be finite and >= 0");
-  const bool default_clamp = parameters::is_default_parameter<NamedParameters, wnp::maximum_displacement_t>::value;
-  const double clamp = to_double(choose_parameter(get_parameter(np, wnp::maximum_displacement), 0.));
-  require(default_clamp || clamp > 0, fn, "maximum_displacement must be > 0 (infinity switches the clamp off)");
-  const bool with_normals = choose_parameter(get_parameter(np, wnp::write_normals), false);
-  require(!with_normals || has_normal_map(points, np), fn, "write_normals needs a normal map");
-  const bool along_input = choose_parameter(get_parameter(np, wnp::move_along_input_normals), false);
-  require(!along_input || has_normal_map(points, np), fn, "move_along_input_normals needs a normal map");
-  const Input input(points, np, true);
+  const Driver_settings settings = read_settings(points, k, np, Wavejets::Point_set_function::ENHANCE_POSITIONS);
+  require(std::isfinite(gain) && std::abs(gain) <= 1e100, settings.function, "the gain must be finite, |gain| <= 1e100");
+  const Input input(points, np, settings.read_input_normals);
 
   const double two_pi = 2. * 3.14159265358979323846;
   std::vector<Eigen::Vector3d> motion(input.size(), Eigen::Vector3d::Zero()), normals;
-  if(with_normals) normals.resize(input.size());
+  if(settings.write_normals) normals.resize(input.size());
   std::vector<unsigned char> clamped(input.size(), 0);
-  const Driver_run run = fit_each_point<ConcurrencyTag>(input, settings, read_callback(np),
+  const Driver_run run = fit_each_point<ConcurrencyTag>(input, settings,
     [&](const Fitted_point& fp) {
-      const double Rf = fp.fit.radius;
-      const double sigma = relative_evaluation_radius(s, Rf);
+      const double sigma = fp.evaluation_radius_in_radii(settings.evaluation_radius);
       const double a0 = enclosed_area(fp.coefficients, fp.fit.order, 0, sigma, 2).real(); // rescaled units
-      double d = Rf * (fp.coefficients[0] - two_pi * (gain - 1.) * a0);
-      const double limit = default_clamp ? 0.5 * Rf : clamp;
+      double d = fp.world_length(fp.coefficients[0] - two_pi * (gain - 1.) * a0);
+      const double limit = settings.maximum_displacement > 0 ? settings.maximum_displacement
+                                                             : fp.world_length(settings.maximum_displacement_in_radii);
       if(std::abs(d) > limit) { d = d > 0 ? limit : -limit; clamped[fp.index] = 1; }
-      motion[fp.index] = d * motion_direction(fp, input.normals, along_input);
-      if(with_normals) normals[fp.index] = surface_normal(fp);
+      motion[fp.index] = d * motion_direction(fp, input.normals, settings.move_along_input_normals);
+      if(settings.write_normals) normals[fp.index] = surface_normal(fp);
     });
 
   Wavejets::Processing_report report = run.report;
-  commit(input, run, np, [&](std::size_t i, auto&& key) {
+  report.moves_points = true;
+  commit(input, run, [&](std::size_t i, auto&& key) {
     put(input.point_map, key, get(input.point_map, key) + Input::to_vector(motion[i]));
-    if(with_normals) put(input.normal_map, key, Input::to_vector(normals[i]));
+    if(settings.write_normals) put(input.normal_map, key, Input::to_vector(normals[i]));
     report.number_of_clamped_points += clamped[i];
   });
   return report;

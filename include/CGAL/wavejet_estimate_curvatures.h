@@ -103,7 +103,7 @@ Wavejets::Processing_report wavejet_estimate_curvatures(PointRange& points, unsi
   namespace wnp = Wavejets::internal_np;
   typedef Point_set_input<PointRange, NamedParameters> Input;
   typedef typename Input::Geom_traits::FT FT;
-  const char* fn = "wavejet_estimate_curvatures";
+  const Wavejets::Point_set_function f = Wavejets::Point_set_function::ESTIMATE_CURVATURES;
 
   const bool any_output = !is_default_parameter<NamedParameters, wnp::mean_curvature_map_t>::value ||
                           !is_default_parameter<NamedParameters, wnp::gaussian_curvature_map_t>::value ||
@@ -111,23 +111,20 @@ Wavejets::Processing_report wavejet_estimate_curvatures(PointRange& points, unsi
                           !is_default_parameter<NamedParameters, wnp::minimal_principal_curvature_map_t>::value ||
                           !is_default_parameter<NamedParameters, wnp::maximal_principal_direction_map_t>::value ||
                           !is_default_parameter<NamedParameters, wnp::minimal_principal_direction_map_t>::value;
-  require(any_output, fn, "no output map given (e.g. Wavejets::parameters::mean_curvature_map(m))");
-
-  Driver_settings settings = read_driver_settings(k, np, 2, fn, 0, true);
-  // Curvatures read from the first fit (the default) do not use the corrected tangent frame:
-  // skip the re-fits, which would change nothing that is written (about 3x faster).
-  if(settings.fitting.curvature_frame == Wavejets::Curvature_frame::INITIAL_FRAME)
-    settings.fitting.correction_iterations = 0;
-  const Input input(points, np, true);
+  require(any_output, Wavejets::function_defaults(f).name,
+          "no output map given (e.g. Wavejets::parameters::mean_curvature_map(m))");
+  const Driver_settings settings = read_settings(points, k, np, f);
+  const Input input(points, np, settings.read_input_normals);
 
   std::vector<Curvature_info> curvatures(input.size());
-  const Driver_run run = fit_each_point<ConcurrencyTag>(input, settings, read_callback(np),
+  const Driver_run run = fit_each_point<ConcurrencyTag>(input, settings,
     [&](const Fitted_point& fp) {
-      const Frame& f = fp.fit.curvature_frame;
-      curvatures[fp.index] = graph_curvature(fp.fit.curvature_derivatives, f.u, f.v, f.n);
+      const Frame& frame = fp.fit.curvature_frame;
+      curvatures[fp.index] = graph_curvature(fp.fit.curvature_derivatives, frame.u, frame.v, frame.n);
     });
 
-  commit(input, run, np, [&](std::size_t i, auto&& key) {
+  // The output maps are the function's own named parameters: read where they are written.
+  commit(input, run, [&](std::size_t i, auto&& key) {
     const Curvature_info& c = curvatures[i];
     put_if_given(get_parameter(np, wnp::mean_curvature_map), key, FT(c.mean));
     put_if_given(get_parameter(np, wnp::gaussian_curvature_map), key, FT(c.gaussian));

@@ -23,7 +23,9 @@ Estimates the normal of every point as the normal of its Wavejet at the point: t
 counterpart of `jet_estimate_normals()` (same signature, same neighborhoods), with the
 Wavejet's tangent-plane correction. Normals are unoriented (their sign comes from PCA), unless
 `orient_with_input_normals(true)`: then each output normal points to the same side as the
-normal read from `normal_map`.
+normal read from `normal_map`. The parameters that read the input normals for another purpose
+(`seed_with_input_normals`, `restrict_to_consistent_normals`) orient the output the same way: input
+normals that are read always orient the frames.
 
 \tparam ConcurrencyTag `Sequential_tag`, `Parallel_tag` or `Parallel_if_available_tag`; both give bitwise identical results.
 \tparam PointRange a model of `Range` (e.g. `std::vector`, `Point_set_3`).
@@ -69,17 +71,8 @@ normal read from `normal_map`.
     \cgalParamType{a model of `Kernel`}
     \cgalParamDefault{a \cgal kernel deduced from the point type, using `CGAL::Kernel_traits`}
   \cgalParamNEnd
-  \cgalParamNBegin{Wavejets::parameters::order}
-    \cgalParamDescription{the requested Wavejet order K (lowered per point by the adaptive order)}
-    \cgalParamType{`std::size_t`, `>= 1`}
-    \cgalParamDefault{2}
-  \cgalParamNEnd
-  \cgalParamNBegin{degree_fitting}
-    \cgalParamDescription{\cgal's name of the order, as in `jet_estimate_normals()`: the same as
-                          `Wavejets::parameters::order` (if both are given, they must be equal)}
-    \cgalParamType{an integer, `>= 1`}
-    \cgalParamDefault{2}
-  \cgalParamNEnd
+  \wavejetsOrderParameter{2}
+  \wavejetsDegreeFittingParameter{2}
   \cgalParamNBegin{Wavejets::parameters::neighbors_per_coefficient}
     \cgalParamDescription{adaptive order: K is lowered until the neighborhood (query included) has at
                           least this many points per unknown, (K+1)(K+2)/2 unknowns (and the system has full rank)}
@@ -180,26 +173,16 @@ Wavejets::Processing_report wavejet_estimate_normals(PointRange& points, unsigne
   using namespace Wavejets::internal;
   typedef Point_set_input<PointRange, NamedParameters> Input;
   static_assert(may_have_normal_map<PointRange, NamedParameters>(), "Error: no normal map");
-  const char* fn = "wavejet_estimate_normals";
-  require(has_normal_map(points, np), fn, "the point set has no normal map (call add_normal_map() first)");
-
-  // Only the normal is written, and it is the full-order surface's: the tangent plane is found
-  // with order-2 fits (one full-order solve per point instead of three), unless asked otherwise.
-  Driver_settings settings = read_driver_settings(k, np, 2, fn, 2);
-  // No curvature is read: the full-order fit in the initial frame, which only serves
-  // Curvature_frame::INITIAL_FRAME curvatures, is not needed.
-  settings.fitting.curvature_frame = Wavejets::Curvature_frame::TANGENT_FRAME;
-  const bool orient = parameters::choose_parameter(
-    parameters::get_parameter(np, Wavejets::internal_np::orient_with_input_normals), false);
-  const Input input(points, np,
-                    orient || settings.restrict_to_consistent_normals ||
-                      settings.fitting.normal_use == Wavejets::Normal_use::SEED_FRAME);
+  // Only the normal is written, and it is the full-order surface's: by default the tangent plane is
+  // found with order-2 fits (one full-order solve per point instead of three; see function_defaults()).
+  const Driver_settings settings = read_settings(points, k, np, Wavejets::Point_set_function::ESTIMATE_NORMALS);
+  const Input input(points, np, settings.read_input_normals);
 
   std::vector<Eigen::Vector3d> normals(input.size());
-  const Driver_run run = fit_each_point<ConcurrencyTag>(input, settings, read_callback(np),
+  const Driver_run run = fit_each_point<ConcurrencyTag>(input, settings,
     [&](const Fitted_point& fp) { normals[fp.index] = surface_normal(fp); });
 
-  commit(input, run, np, [&](std::size_t i, auto&& key) {
+  commit(input, run, [&](std::size_t i, auto&& key) {
     put(input.normal_map, key, Input::to_vector(normals[i]));
   });
   return run.report;

@@ -85,18 +85,20 @@ struct Fitting_options
   /// one fit of the full order is done in it; its residual tilt f_{1,+-1} is kept (the normal is that
   /// of the full-order surface, see `Wavejet_form::normal_direction()`). With
   /// `Curvature_frame::INITIAL_FRAME`, the full-order fit in the initial frame is also done, for the
-  /// curvatures. The point-set functions use 2.
+  /// curvatures. Of the point-set functions, `wavejet_estimate_normals()` uses 2 by default, the
+  /// others 0 (see `function_defaults()`).
   std::size_t tangent_plane_order = 0;
   /// Number of iteratively reweighted least-squares passes (Tukey biweight; 0 = plain least squares).
   std::size_t robust_iterations = 0;
   /// Neighborhood radius Rf used to rescale the coordinates; 0 means the distance from the query
-  /// point to its farthest neighbor.
+  /// point to its farthest neighbor. (The point-set functions set it from `neighbor_radius`.)
   double neighborhood_radius = 0.;
   /// Fit whose frame the curvatures are read from.
   Curvature_frame curvature_frame = Curvature_frame::INITIAL_FRAME;
   /// Role of a given normal.
   Normal_use normal_use = Normal_use::ORIENT;
-  /// Compute `condition_number()` (an SVD of the triangular factor; costs a little).
+  /// Compute `condition_number()` (an SVD of the triangular factor; costs a little). The point-set
+  /// functions, which have no use for it, switch it off.
   bool compute_condition_number = true;
   /// Hermite fit: weight w of the slope equations given by the neighbors' normals (used only when
   /// normals of the neighbors are given, e.g. through `Wavejet_fitting`'s overload that takes them,

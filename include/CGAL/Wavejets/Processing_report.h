@@ -31,8 +31,12 @@ struct Processing_report
   std::size_t number_of_non_finite_points = 0;
   /// Fitted points whose order was lowered below the requested one (adaptive order).
   std::size_t number_of_reduced_order_points = 0;
-  /// `wavejet_enhance_positions` only: points whose motion was clamped to `maximum_displacement`.
+  /// `wavejet_enhance_positions` only: points whose motion was clamped to `maximum_displacement`
+  /// (0 for the other functions, which move no point; see `moves_points`).
   std::size_t number_of_clamped_points = 0;
+  /// True for the reports of `wavejet_enhance_positions`, the one function that moves points (and
+  /// so clamps motions): `number_of_clamped_points` is meaningful, and printed, only then.
+  bool moves_points = false;
   /// True if the callback stopped the computation; then nothing at all was written.
   bool interrupted = false;
 };
@@ -42,8 +46,9 @@ inline std::ostream& operator<<(std::ostream& os, const Processing_report& r)
 {
   os << r.number_of_points << " points, " << r.number_of_fitted_points << " fitted, "
      << r.number_of_unfitted_points << " not fitted (" << r.number_of_non_finite_points << " non-finite), "
-     << r.number_of_reduced_order_points << " at reduced order, " << r.number_of_clamped_points << " clamped"
-     << (r.interrupted ? ", interrupted (nothing written)" : "");
+     << r.number_of_reduced_order_points << " at reduced order";
+  if(r.moves_points) os << ", " << r.number_of_clamped_points << " clamped";
+  os << (r.interrupted ? ", interrupted (nothing written)" : "");
   return os;
 }
 

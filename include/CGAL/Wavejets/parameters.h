@@ -24,23 +24,24 @@ namespace CGAL {
 namespace Wavejets {
 
 /// \cond SKIP_IN_MANUAL
-// X-macro: every package parameter, once. Documented in the functions that read them.
+// X-macro: every package parameter, once. Documented in the functions that read them; their defaults
+// are those of Fitting_options and function_defaults() (Function_defaults.h).
 #define CGAL_WAVEJETS_PARAMETER_LIST(X)                                                            \
   X(order)                       /* K, the Wavejet order                                        */ \
   X(evaluation_radius)           /* s of a_n(s); default Rf                                     */ \
   X(maximum_displacement)        /* clamp of the position filter; default Rf/2, inf: off        */ \
-  X(neighbors_per_coefficient)   /* beta of the adaptive order; default 1.1                     */ \
-  X(correction_iterations)       /* tangent-plane re-fits; default 2                            */ \
-  X(tangent_plane_order)         /* order of the tangent-plane search fits; default 2           */ \
-  X(robust_iterations)           /* Tukey IRLS passes; default 0                                */ \
-  X(minimum_order)               /* lowest order before the fit fails; default 2                */ \
+  X(neighbors_per_coefficient)   /* beta of the adaptive order                                  */ \
+  X(correction_iterations)       /* tangent-plane re-fits                                       */ \
+  X(tangent_plane_order)         /* order of the tangent-plane search fits                      */ \
+  X(robust_iterations)           /* Tukey IRLS passes                                           */ \
+  X(minimum_order)               /* lowest order before the fit fails                           */ \
   X(curvature_frame)             /* Wavejets::Curvature_frame                                   */ \
   X(orient_with_input_normals)   /* estimate_normals: keep the input normals' orientation       */ \
   X(seed_with_input_normals)     /* first fit in the plane orthogonal to the input normal       */ \
   X(restrict_to_consistent_normals) /* drop neighbors whose normal is > 90 deg from the center's */ \
   X(use_neighbor_normals)        /* Hermite fit to heights and the neighbors' normals' slopes   */ \
-  X(neighbor_normal_weight)      /* weight of the slope rows of the Hermite fit; default 1      */ \
-  X(compact_weights)             /* rows weighted by (1 - (d/Rf)^2)^2; default false            */ \
+  X(neighbor_normal_weight)      /* weight of the slope rows of the Hermite fit                 */ \
+  X(compact_weights)             /* rows weighted by (1 - (d/Rf)^2)^2                           */ \
   X(write_normals)               /* enhance_positions: also write the Wavejet normals           */ \
   X(move_along_input_normals)    /* enhance_positions: move along the input normals             */ \
   X(fitted_map)                  /* writable bool map: true where a Wavejet was fitted          */ \

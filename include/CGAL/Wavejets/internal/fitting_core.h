@@ -42,6 +42,14 @@ struct Frame
   Eigen::Vector3d u = Eigen::Vector3d::UnitX(), v = Eigen::Vector3d::UnitY(), n = Eigen::Vector3d::UnitZ();
 };
 
+/// Unit normal at the origin of the graph z(x, y) over `frame` whose slopes there are (fx, fy) =
+/// (dz/dx, dz/dy): n - fx u - fy v, normalized. The one place of this formula (the tilted frame of
+/// the correction, the normals the functions write, `Wavejet_form::normal_direction()`, the normal filter).
+inline Eigen::Vector3d graph_normal(const Frame& frame, double fx, double fy)
+{
+  return (frame.n - fx * frame.u - fy * frame.v).normalized();
+}
+
 /// Result of Fitter::fit. The coefficients live in the Fitter (see Fitter::coefficients()).
 struct Fit_result
 {
@@ -299,7 +307,7 @@ private:
   static Frame tilted_frame(const Frame& f, const double* c, std::size_t order)
   {
     if(order < 1) return f;
-    const Eigen::Vector3d target = (f.n - c[1] * f.u - c[2] * f.v).normalized();
+    const Eigen::Vector3d target = graph_normal(f, c[1], c[2]);
     const Eigen::Vector3d axis = f.n.cross(target);
     const double s = axis.norm(), co = f.n.dot(target);
     Frame r;
@@ -312,6 +320,22 @@ private:
     r.u = rotate(f.u).normalized();
     r.v = r.n.cross(r.u);
     return r;
+  }
+
+  // Coordinates of the L rescaled offsets in `frame`: (x, y) into xs_, ys_ and the heights into h,
+  // with zeros on the padding rows L..P-1.
+  void project_onto_frame(std::size_t L, std::size_t P, const Frame& frame, double* h)
+  {
+    xs_.resize(P);
+    ys_.resize(P);
+    for(std::size_t l = 0; l < L; ++l)
+    {
+      const Eigen::Vector3d& d = scaled_[l];
+      xs_[l] = d.dot(frame.u);
+      ys_[l] = d.dot(frame.v);
+      h[l] = d.dot(frame.n);
+    }
+    for(std::size_t l = L; l < P; ++l) xs_[l] = ys_[l] = h[l] = 0.;
   }
 
   // Builds the system [A | h] in `frame` (column-major, column stride padded_rows(L), zero
@@ -329,16 +353,7 @@ private:
     system.resize(P * (B + 1));
     double* A = system.data();
     double* h = A + B * P;
-    xs_.resize(P);
-    ys_.resize(P);
-    for(std::size_t l = 0; l < L; ++l)
-    {
-      const Eigen::Vector3d& d = scaled_[l];
-      xs_[l] = d.dot(frame.u);
-      ys_[l] = d.dot(frame.v);
-      h[l] = d.dot(frame.n);
-    }
-    for(std::size_t l = L; l < P; ++l) xs_[l] = ys_[l] = h[l] = 0.;
+    project_onto_frame(L, P, frame, h);
     evaluate_basis_columns(xs_.data(), ys_.data(), L, P, order, A);
     c.resize(B);
     if(keep_system ? !solve_weighted(L, B, nullptr, c) : !solve_work(L, B, c))
@@ -398,18 +413,10 @@ private:
     system_.resize(P * (B + 1));
     double* A = system_.data();
     double* h = A + B * P;
-    xs_.resize(P);
-    ys_.resize(P);
+    project_onto_frame(L, P, frame, h);
     base_.resize(R);
-    for(std::size_t l = 0; l < L; ++l)
-    {
-      const Eigen::Vector3d& d = scaled_[l];
-      xs_[l] = d.dot(frame.u);
-      ys_[l] = d.dot(frame.v);
-      h[l] = d.dot(frame.n);
-      base_[l] = compact_ ? (std::max)(1. - d.squaredNorm(), 0.) : 1.; // sqrt of (1 - |d|^2)^2
-    }
-    for(std::size_t l = L; l < P; ++l) xs_[l] = ys_[l] = h[l] = 0.;
+    for(std::size_t l = 0; l < L; ++l) // sqrt of the weight (1 - |d|^2)^2
+      base_[l] = compact_ ? (std::max)(1. - scaled_[l].squaredNorm(), 0.) : 1.;
     evaluate_basis_columns(xs_.data(), ys_.data(), L, P, order, A);
     if(M > 0)
     {

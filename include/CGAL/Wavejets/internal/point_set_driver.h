@@ -19,6 +19,7 @@
 // give bitwise identical results.
 
 #include <CGAL/Wavejets/Fitting_options.h>
+#include <CGAL/Wavejets/Function_defaults.h>
 #include <CGAL/Wavejets/Processing_report.h>
 #include <CGAL/Wavejets/parameters.h>
 #include <CGAL/Wavejets/internal/cgal_compatibility.h>
@@ -34,6 +35,7 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <functional>
@@ -41,6 +43,7 @@
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace CGAL {
@@ -54,16 +57,26 @@ inline void require(bool condition, const char* function, const char* message)
     throw std::invalid_argument(std::string(function) + ": " + message);
 }
 
-/// Settings of the per-point loop, read once from the named parameters.
+/// Everything a point-set function reads from its named parameters, except the property maps (which
+/// `Point_set_input` holds): read and checked once per call by `read_settings()`, then passed to the
+/// per-point loop, the kernels and the commit.
 struct Driver_settings
 {
+  const char* function = "";               // name, for the error messages
   unsigned int k = 0;
   double neighbor_radius = 0.;
   std::size_t order = 2;
-  Fitting_options fitting;
-  bool use_input_normals = false;       // orient (or seed) the frames with the input normals
+  Fitting_options fitting;                 // its neighborhood_radius is neighbor_radius
+  bool read_input_normals = false;         // copy the input normals: the range has them and a setting uses them
+  bool orient_with_input_normals = false;  // the input normals orient (or seed) the frames
   bool restrict_to_consistent_normals = false;
-  bool use_neighbor_normals = false;    // Hermite fit (normals: the input's, or estimated first)
+  bool use_neighbor_normals = false;       // Hermite fit (normals: the input's, or estimated first)
+  double evaluation_radius = 0.;           // s of a_n(s), world units; 0: Rf of each point
+  double maximum_displacement = 0.;        // clamp, world units; 0: maximum_displacement_in_radii * Rf
+  double maximum_displacement_in_radii = 0.;
+  bool write_normals = false;              // enhance_positions: also write the Wavejet normals
+  bool move_along_input_normals = false;   // enhance_positions: move along the input normals
+  std::function<bool(double)> callback;    // empty if not given
 };
 
 /// The requested order K: `Wavejets::parameters::order`, or \cgal's `degree_fitting` (the name the jet
@@ -106,47 +119,90 @@ void check_degree_monge(const NP& np, const char* fn, bool computes_curvatures)
   }
 }
 
-/// Reads the settings shared by all functions. `default_order` and `default_tangent_plane_order`
-/// (0: the order itself) differ per function; `computes_curvatures` accepts `degree_monge(2)`.
+/// The fit settings from the named parameters, with the defaults `d` of the function.
 template <class NP>
-Driver_settings read_driver_settings(unsigned int k, const NP& np, std::size_t default_order, const char* fn,
-                                     std::size_t default_tangent_plane_order = 0, bool computes_curvatures = false)
+Fitting_options read_fitting_options(const NP& np, const Fitting_options& d, const char* fn)
 {
   using CGAL::parameters::choose_parameter;
   using CGAL::parameters::get_parameter;
+  namespace wnp = Wavejets::internal_np;
+  Fitting_options o = d;
+  o.neighbors_per_coefficient = choose_parameter(get_parameter(np, wnp::neighbors_per_coefficient), d.neighbors_per_coefficient);
+  require(o.neighbors_per_coefficient >= 1., fn, "neighbors_per_coefficient must be >= 1");
+  o.minimum_order = choose_parameter(get_parameter(np, wnp::minimum_order), d.minimum_order);
+  o.correction_iterations = choose_parameter(get_parameter(np, wnp::correction_iterations), d.correction_iterations);
+  o.tangent_plane_order = choose_parameter(get_parameter(np, wnp::tangent_plane_order), d.tangent_plane_order);
+  o.robust_iterations = choose_parameter(get_parameter(np, wnp::robust_iterations), d.robust_iterations);
+  o.curvature_frame = choose_parameter(get_parameter(np, wnp::curvature_frame), d.curvature_frame);
+  o.normal_use = choose_parameter(get_parameter(np, wnp::seed_with_input_normals), false) ? Normal_use::SEED_FRAME
+                                                                                            : Normal_use::ORIENT;
+  o.compute_condition_number = false; // no function reports it
+  o.neighbor_normal_weight = to_double(choose_parameter(get_parameter(np, wnp::neighbor_normal_weight), d.neighbor_normal_weight));
+  require(std::isfinite(o.neighbor_normal_weight) && o.neighbor_normal_weight > 0, fn,
+          "neighbor_normal_weight must be finite and > 0");
+  o.compact_weights = choose_parameter(get_parameter(np, wnp::compact_weights), d.compact_weights);
+  return o;
+}
+
+/// Reads and checks the named parameters of the point-set function `f` on `points`: the one place
+/// where a function's settings are read (its defaults come from `function_defaults(f)`).
+template <class PointRange, class NP>
+Driver_settings read_settings(PointRange& points, unsigned int k, const NP& np, Point_set_function f)
+{
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  using CGAL::parameters::is_default_parameter;
+  namespace wnp = Wavejets::internal_np;
+  const Function_defaults d = function_defaults(f);
+  const char* fn = d.name;
   Driver_settings s;
+  s.function = fn;
   s.k = k;
   s.neighbor_radius = to_double(choose_parameter(get_parameter(np, CGAL::internal_np::neighbor_radius), 0.));
-  s.order = read_order(np, default_order, fn);
-  check_degree_monge(np, fn, computes_curvatures);
+  s.order = read_order(np, d.order, fn);
+  check_degree_monge(np, fn, f == Point_set_function::ESTIMATE_CURVATURES);
   require(s.k >= 2 || s.neighbor_radius > 0, fn, "needs k >= 2 or neighbor_radius > 0");
   require(std::isfinite(s.neighbor_radius) && s.neighbor_radius >= 0, fn, "neighbor_radius must be finite and >= 0");
-  s.fitting.neighbors_per_coefficient =
-    choose_parameter(get_parameter(np, Wavejets::internal_np::neighbors_per_coefficient), 1.1);
-  require(s.fitting.neighbors_per_coefficient >= 1., fn, "neighbors_per_coefficient must be >= 1");
-  s.fitting.minimum_order = choose_parameter(get_parameter(np, Wavejets::internal_np::minimum_order), std::size_t(2));
-  s.fitting.correction_iterations =
-    choose_parameter(get_parameter(np, Wavejets::internal_np::correction_iterations), std::size_t(2));
-  s.fitting.tangent_plane_order =
-    choose_parameter(get_parameter(np, Wavejets::internal_np::tangent_plane_order), default_tangent_plane_order);
-  s.fitting.robust_iterations = choose_parameter(get_parameter(np, Wavejets::internal_np::robust_iterations), std::size_t(0));
-  s.fitting.curvature_frame =
-    choose_parameter(get_parameter(np, Wavejets::internal_np::curvature_frame), Curvature_frame::INITIAL_FRAME);
-  s.fitting.normal_use = choose_parameter(get_parameter(np, Wavejets::internal_np::seed_with_input_normals), false)
-                           ? Normal_use::SEED_FRAME : Normal_use::ORIENT;
-  s.fitting.compute_condition_number = false;
-  s.restrict_to_consistent_normals =
-    choose_parameter(get_parameter(np, Wavejets::internal_np::restrict_to_consistent_normals), false);
-  s.use_neighbor_normals = choose_parameter(get_parameter(np, Wavejets::internal_np::use_neighbor_normals), false);
-  s.fitting.neighbor_normal_weight =
-    to_double(choose_parameter(get_parameter(np, Wavejets::internal_np::neighbor_normal_weight), 1.));
-  require(std::isfinite(s.fitting.neighbor_normal_weight) && s.fitting.neighbor_normal_weight > 0, fn,
-          "neighbor_normal_weight must be finite and > 0");
-  s.fitting.compact_weights = choose_parameter(get_parameter(np, Wavejets::internal_np::compact_weights), false);
+  s.fitting = read_fitting_options(np, d.fitting, fn);
+  s.fitting.neighborhood_radius = s.neighbor_radius;
+  // What a function does not need is not computed. The normal estimation reads no curvature: no
+  // full-order fit in the initial frame (it only serves INITIAL_FRAME curvatures). Curvatures read
+  // from the first fit (the default) do not use the corrected frame: no re-fits (about 3x faster).
+  if(f == Point_set_function::ESTIMATE_NORMALS)
+    s.fitting.curvature_frame = Curvature_frame::TANGENT_FRAME;
+  if(f == Point_set_function::ESTIMATE_CURVATURES && s.fitting.curvature_frame == Curvature_frame::INITIAL_FRAME)
+    s.fitting.correction_iterations = 0;
+  s.restrict_to_consistent_normals = choose_parameter(get_parameter(np, wnp::restrict_to_consistent_normals), false);
+  s.use_neighbor_normals = choose_parameter(get_parameter(np, wnp::use_neighbor_normals), false);
+  s.write_normals = choose_parameter(get_parameter(np, wnp::write_normals), false);
+  s.move_along_input_normals = choose_parameter(get_parameter(np, wnp::move_along_input_normals), false);
+  s.callback = choose_parameter(get_parameter(np, CGAL::internal_np::callback), std::function<bool(double)>());
+
+  const bool has_normals = has_normal_map(points, np);
+  if(f == Point_set_function::ESTIMATE_NORMALS || f == Point_set_function::ENHANCE_NORMALS)
+    require(has_normals, fn, "the point set has no normal map (call add_normal_map() first)");
+  require(!s.write_normals || has_normals, fn, "write_normals needs a normal map");
+  require(!s.move_along_input_normals || has_normals, fn, "move_along_input_normals needs a normal map");
+  // The input normals are read when a setting uses them, and then they also orient the frames (the
+  // functions whose outputs have a side use them whenever the range has them).
+  const bool asked = choose_parameter(get_parameter(np, wnp::orient_with_input_normals), false) ||
+                     s.restrict_to_consistent_normals || s.fitting.normal_use == Normal_use::SEED_FRAME;
+  s.read_input_normals = has_normals && (d.orients_with_input_normals || asked);
+  s.orient_with_input_normals = s.read_input_normals;
+
+  s.evaluation_radius = to_double(choose_parameter(get_parameter(np, wnp::evaluation_radius), 0.));
+  require(std::isfinite(s.evaluation_radius) && s.evaluation_radius >= 0, fn, "evaluation_radius must be finite and >= 0");
+  s.maximum_displacement_in_radii = d.maximum_displacement_in_radii;
+  if constexpr(!is_default_parameter<NP, wnp::maximum_displacement_t>::value)
+  {
+    s.maximum_displacement = to_double(get_parameter(np, wnp::maximum_displacement));
+    require(s.maximum_displacement > 0, fn, "maximum_displacement must be > 0 (infinity switches the clamp off)");
+  }
   return s;
 }
 
-/// Input of a point-set function: the range's keys, and positions/normals copied to double.
+/// Input of a point-set function: the range's keys, its property maps (point, normal and the optional
+/// `fitted_map`), and positions/normals copied to double.
 template <class PointRange, class NP>
 struct Point_set_input
 {
@@ -157,18 +213,22 @@ struct Point_set_input
   typedef typename Geom_traits::Point_3 Point_3;
   typedef typename Geom_traits::Vector_3 Vector_3;
   typedef typename PointRange::iterator iterator;
+  typedef std::decay_t<decltype(CGAL::parameters::get_parameter(std::declval<const NP&>(),
+                                                                Wavejets::internal_np::fitted_map))> Fitted_map;
 
   Point_map point_map;
   Normal_map normal_map;
+  Fitted_map fitted_map;                     // CGAL::internal_np::Param_not_found if not given
   bool has_normals;
   std::vector<iterator> items;               // range order
   std::vector<Neighbor_query::Point> points; // double copy (fed to the kd-tree)
   std::vector<unsigned char> finite;         // point i has finite coordinates
   std::vector<Eigen::Vector3d> normals;      // input normals (empty if none are read)
 
-  /// `read_normals`: copy the input normals (for orientation, seeding or restriction).
+  /// `read_normals`: copy the input normals (`Driver_settings::read_input_normals`).
   Point_set_input(PointRange& range, const NP& np, bool read_normals)
     : point_map(NP_helper::get_point_map(range, np)), normal_map(read_normal_map(range, np)),
+      fitted_map(CGAL::parameters::get_parameter(np, Wavejets::internal_np::fitted_map)),
       has_normals(has_normal_map(range, np))
   {
     for(iterator it = range.begin(); it != range.end(); ++it) items.push_back(it);
@@ -208,11 +268,20 @@ struct Point_set_input
 };
 
 /// What a kernel sees of one fitted point.
+/// The fit works in coordinates divided by the neighborhood radius Rf ("rescaled units"): the
+/// coefficients are in those units, and the two conversions below are the only unit arithmetic the
+/// functions' kernels do (the filters' formulas are written in rescaled units, WAVEJETS_MATH.md).
 struct Fitted_point
 {
   std::size_t index;
   const Fit_result& fit;
   const double* coefficients; // rescaled units (see Fitter::coefficients())
+
+  /// A length given in units of Rf, in world units.
+  double world_length(double rescaled) const { return fit.radius * rescaled; }
+  /// The evaluation radius s (world units; 0: Rf) in units of Rf, clamped to 1 (a_n(s) would
+  /// extrapolate the polynomial beyond the points it was fitted to).
+  double evaluation_radius_in_radii(double s) const { return s > 0 ? (std::min)(s / fit.radius, 1.) : 1.; }
 };
 
 /// Unit normal of the Wavejet surface at the origin, in the final frame (tilted by the residual f_{1,+-1}).
@@ -220,7 +289,7 @@ inline Eigen::Vector3d surface_normal(const Fitted_point& fp)
 {
   const Frame& f = fp.fit.frame;
   if(fp.fit.order < 1) return f.n;
-  return (f.n - fp.coefficients[1] * f.u - fp.coefficients[2] * f.v).normalized();
+  return graph_normal(f, fp.coefficients[1], fp.coefficients[2]);
 }
 
 /// Kernel of the normal-estimation pass of the Hermite pipeline (a named type: a lambda in
@@ -241,8 +310,7 @@ struct Driver_run
 /// Runs `kernel(const Fitted_point&)` on every point that can be fitted. The kernel must only
 /// write to its own slot of per-point buffers (it runs concurrently under Parallel_tag).
 template <class ConcurrencyTag, class Input, class Kernel>
-Driver_run fit_each_point(const Input& input, const Driver_settings& settings,
-                          const std::function<bool(double)>& callback, const Kernel& kernel)
+Driver_run fit_each_point(const Input& input, const Driver_settings& settings, const Kernel& kernel)
 {
   const std::size_t N = input.size();
   Driver_run run;
@@ -267,7 +335,7 @@ Driver_run fit_each_point(const Input& input, const Driver_settings& settings,
     first.fitting.correction_iterations = 2;
     first.fitting.curvature_frame = Curvature_frame::TANGENT_FRAME;
     estimated_normals.assign(N, Eigen::Vector3d::Zero());
-    const Driver_run pass = fit_each_point<ConcurrencyTag>(input, first, callback, Normal_writer{&estimated_normals});
+    const Driver_run pass = fit_each_point<ConcurrencyTag>(input, first, Normal_writer{&estimated_normals});
     if(pass.report.interrupted)
     {
       run.report.interrupted = true;
@@ -287,7 +355,7 @@ Driver_run fit_each_point(const Input& input, const Driver_settings& settings,
   std::vector<std::size_t> chunks;
   for(std::size_t b = 0; b < N; b += chunk_size) chunks.push_back(b);
 
-  Callback_wrapper<ConcurrencyTag> progress(callback, N);
+  Callback_wrapper<ConcurrencyTag> progress(settings.callback, N);
   std::atomic<bool> interrupted(false);
 
   CGAL::for_each<ConcurrencyTag>(chunks, [&](const std::size_t begin) -> bool {
@@ -306,7 +374,7 @@ Driver_run fit_each_point(const Input& input, const Driver_settings& settings,
 
       const Eigen::Vector3d* hint = nullptr;
       Eigen::Vector3d normal;
-      if(have_normals)
+      if(settings.orient_with_input_normals)
       {
         normal = input.normals[i];
         if(normal.allFinite() && normal.squaredNorm() > 0) hint = &normal; // else: unoriented
@@ -322,9 +390,7 @@ Driver_run fit_each_point(const Input& input, const Driver_settings& settings,
         offsets.push_back(input.position(j) - p);
         if(neighbor_normals) normals_of_offsets.push_back((*neighbor_normals)[j]);
       }
-      Fitting_options options = settings.fitting;
-      options.neighborhood_radius = settings.neighbor_radius;
-      fitter.fit(offsets.data(), offsets.size(), settings.order, options, hint, fit,
+      fitter.fit(offsets.data(), offsets.size(), settings.order, settings.fitting, hint, fit,
                  neighbor_normals ? normals_of_offsets.data() : nullptr);
       status[i] = (unsigned char)(fit.status);
       if(!fit.success()) continue;
@@ -366,13 +432,13 @@ void write_fitted_map(const Input& input, const Driver_run& run, const FittedMap
 
 /// Second pass of every function: unless the run was interrupted, calls `write(i, key)` for each
 /// fitted point i (in range order) and fills the optional `fitted_map`. Unfitted points are untouched.
-template <class Input, class NP, class Write>
-void commit(const Input& input, const Driver_run& run, const NP& np, const Write& write)
+template <class Input, class Write>
+void commit(const Input& input, const Driver_run& run, const Write& write)
 {
   if(run.report.interrupted) return;
   for(std::size_t i = 0; i < input.size(); ++i)
     if(run.fitted[i]) write(i, *input.items[i]);
-  write_fitted_map(input, run, CGAL::parameters::get_parameter(np, Wavejets::internal_np::fitted_map));
+  write_fitted_map(input, run, input.fitted_map);
 }
 
 /// `put` for an optional output map (a named parameter that may be absent).
@@ -380,17 +446,6 @@ template <class Key, class Value>
 void put_if_given(CGAL::internal_np::Param_not_found, const Key&, const Value&) {}
 template <class Map, class Key, class Value>
 void put_if_given(const Map& map, const Key& key, const Value& value) { put(map, key, value); }
-
-/// The callback named parameter (empty function if absent).
-template <class NP>
-std::function<bool(double)> read_callback(const NP& np)
-{
-  return CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, CGAL::internal_np::callback),
-                                      std::function<bool(double)>());
-}
-
-/// Evaluation radius in units of Rf: s / Rf, clamped to 1 (a_n(s) extrapolates beyond Rf); 1 if s <= 0.
-inline double relative_evaluation_radius(double s, double Rf) { return s > 0 ? (std::min)(s / Rf, 1.) : 1.; }
 
 } // namespace internal
 } // namespace Wavejets

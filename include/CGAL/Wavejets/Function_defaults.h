@@ -1,0 +1,84 @@
+// Copyright (c) 2026 The CGAL Wavejets project.
+// All rights reserved.
+//
+// This file is part of the Wavejets package (https://github.com/cgal-wavejets/wavejets).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : The CGAL Wavejets developers
+
+#ifndef CGAL_WAVEJETS_FUNCTION_DEFAULTS_H
+#define CGAL_WAVEJETS_FUNCTION_DEFAULTS_H
+
+#include <CGAL/Wavejets/Fitting_options.h>
+
+#include <cstddef>
+
+namespace CGAL {
+namespace Wavejets {
+
+/// \ingroup PkgWavejetsRef
+/// The four point-set functions of the package (the key of `function_defaults()`).
+enum class Point_set_function
+{
+  ESTIMATE_NORMALS,    ///< `wavejet_estimate_normals()`
+  ESTIMATE_CURVATURES, ///< `wavejet_estimate_curvatures()`
+  ENHANCE_POSITIONS,   ///< `wavejet_enhance_positions()`
+  ENHANCE_NORMALS      ///< `wavejet_enhance_normals()`
+};
+
+/// \ingroup PkgWavejetsRef
+/// Default settings of one point-set function: the one table of the defaults that the functions
+/// read, and the `wavejets` tool too (the fit settings that all functions share are the defaults of
+/// `Fitting_options`; only what differs per function is here).
+struct Function_defaults
+{
+  /// Name of the function, e.g. `"wavejet_estimate_normals"` (used in its error messages).
+  const char* name;
+  /// The Wavejet order K when neither `Wavejets::parameters::order` nor `degree_fitting` is given.
+  std::size_t order;
+  /// The fit settings: the defaults of `Fitting_options`, with the function's `tangent_plane_order`
+  /// (2 for the normal estimation, whose only output is the normal; 0, the full order, for the
+  /// filters, which are defined over the tangent plane of the full-order Wavejet, and for the curvatures).
+  Fitting_options fitting;
+  /// `wavejet_enhance_positions()`: the default clamp of each point's motion, in units of its
+  /// neighborhood radius Rf (0 for the functions that move no point).
+  double maximum_displacement_in_radii;
+  /// Whether the input normals orient the frames when the range has a normal map, without a named
+  /// parameter asking for it (the functions whose outputs have a side: the curvatures' signs, the
+  /// filters' heights and normals). `wavejet_estimate_normals()` orients only when asked.
+  bool orients_with_input_normals;
+};
+
+/// \ingroup PkgWavejetsRef
+/// The defaults of `f`.
+inline Function_defaults function_defaults(Point_set_function f)
+{
+  Function_defaults d{"", 2, Fitting_options(), 0., true};
+  switch(f)
+  {
+    case Point_set_function::ESTIMATE_NORMALS:
+      d.name = "wavejet_estimate_normals";
+      d.fitting.tangent_plane_order = 2;
+      d.orients_with_input_normals = false;
+      break;
+    case Point_set_function::ESTIMATE_CURVATURES:
+      d.name = "wavejet_estimate_curvatures";
+      break;
+    case Point_set_function::ENHANCE_POSITIONS:
+      d.name = "wavejet_enhance_positions";
+      d.order = 4;
+      d.maximum_displacement_in_radii = 0.5;
+      break;
+    case Point_set_function::ENHANCE_NORMALS:
+      d.name = "wavejet_enhance_normals";
+      d.order = 4;
+      break;
+  }
+  return d;
+}
+
+} // namespace Wavejets
+} // namespace CGAL
+
+#endif // CGAL_WAVEJETS_FUNCTION_DEFAULTS_H
