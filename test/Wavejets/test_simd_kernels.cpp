@@ -93,14 +93,15 @@ int main()
         systems.push_back(s);
       }
 
-#ifdef CGAL_WAVEJETS_AVX_DISPATCH
-  const bool has_avx = __builtin_cpu_supports("avx");
-  const bool has_fma = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+#if (defined(__GNUC__) || defined(__clang__)) && (defined(__x86_64__) || defined(__i386__))
+  const bool has_avx = WI::avx_dispatch && __builtin_cpu_supports("avx");
+  const bool has_fma = WI::avx_dispatch && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
 #else
   const bool has_avx = false, has_fma = false;
-  std::cout << "this build has no AVX dispatch (not x86 with g++/clang++, or CGAL_WAVEJETS_NO_AVX_DISPATCH): "
-               "the baseline kernel alone is checked" << std::endl;
 #endif
+  if(!WI::avx_dispatch)
+    std::cout << "this build has no AVX dispatch (not x86 with g++/clang++, or CGAL_WAVEJETS_NO_AVX_DISPATCH): "
+                 "the baseline kernel alone is checked" << std::endl;
 
   double worst_baseline = 0., worst_fma = 0.;
   bool avx_bitwise = true, fma_close = true, dispatch_ok = true, all_solved = true;
@@ -115,7 +116,6 @@ int main()
     all_solved = all_solved && solve(&WI::householder_kernel, s, base);
     worst_baseline = (std::max)(worst_baseline, relative_difference(base, ref) / condition);
     all_solved = all_solved && solve(&WI::householder_least_squares, s, dispatched);
-#ifdef CGAL_WAVEJETS_AVX_DISPATCH
     if(has_avx)
     {
       all_solved = all_solved && solve(&WI::householder_avx, s, avx);
@@ -129,7 +129,6 @@ int main()
       fma_close = fma_close && d <= 1e-12 * condition;
       fma_differs += fma != base;
     }
-#endif
     const std::vector<double>& best = has_fma ? fma : has_avx ? avx : base;
     dispatch_ok = dispatch_ok && dispatched == best;
   }
@@ -151,10 +150,8 @@ int main()
   deficient.M.col(3) = deficient.M.col(1);
   std::vector<double> c;
   bool reported = !solve(&WI::householder_kernel, deficient, c) && !solve(&WI::householder_least_squares, deficient, c);
-#ifdef CGAL_WAVEJETS_AVX_DISPATCH
   if(has_avx) reported = reported && !solve(&WI::householder_avx, deficient, c);
   if(has_fma) reported = reported && !solve(&WI::householder_fma, deficient, c);
-#endif
   check(reported, "a rank-deficient system is reported by every variant");
 
   std::cout << checks - failures << " passed, " << failures << " failed" << std::endl;

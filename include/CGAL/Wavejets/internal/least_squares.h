@@ -23,10 +23,11 @@
 // vector width the compiler picked: the partial sums and their final reduction are always the
 // same, so the SSE2 and AVX code give bitwise identical results.
 
+#include <boost/align/aligned_allocator.hpp>
+
 #include <cmath>
 #include <cstddef>
 #include <cstring>
-#include <new>
 #include <utility>
 #include <vector>
 
@@ -34,8 +35,15 @@
 // hence the result, is bitwise the same as the SSE2 code) and for AVX2 with FMA (the compiler fuses
 // multiply-adds, ~1.3x faster; results differ in the last bits from the other two), and the best
 // one the processor supports is picked at run time, the same for every call: results never depend
-// on the thread or on the ConcurrencyTag. Define CGAL_WAVEJETS_NO_AVX_DISPATCH to switch this off
-// (baseline code only), CGAL_WAVEJETS_NO_FMA_DISPATCH to keep only the AVX variant.
+// on the thread or on the ConcurrencyTag. The user's opt-out macros (documented in the manual's
+// installation section; define them before including any header of the package):
+//   CGAL_WAVEJETS_NO_AVX_DISPATCH        baseline code only (no run-time dispatch);
+//   CGAL_WAVEJETS_NO_FMA_DISPATCH        keep only the AVX variant (results bitwise equal to baseline);
+//   CGAL_WAVEJETS_NO_VECTOR_EXTENSIONS   the kernels' four-lane type is a plain struct instead of the
+//                                        GCC/Clang vector extension (what other compilers get): same
+//                                        arithmetic per lane, so bitwise the same results.
+// The header's own macros (CGAL_WAVEJETS_AVX_DISPATCH, CGAL_WAVEJETS_KERNEL_INLINE,
+// CGAL_WAVEJETS_TARGET) are #undef'd at its end; `avx_dispatch` says whether the dispatch is compiled in.
 #if (defined(__GNUC__) || defined(__clang__)) && (defined(__x86_64__) || defined(__i386__)) && \
     !defined(CGAL_WAVEJETS_NO_AVX_DISPATCH) && !defined(__FMA__)
 #define CGAL_WAVEJETS_AVX_DISPATCH 1
@@ -57,20 +65,7 @@ constexpr double rank_tolerance = 1e-10;
 /// then never straddle two cache lines (measured: the K = 6 normals were up to 10% slower when
 /// the heap happened to return storage that was only 16-byte aligned).
 template <class T>
-struct Aligned_allocator
-{
-  typedef T value_type;
-  static constexpr std::size_t alignment = 64;
-  Aligned_allocator() = default;
-  template <class U>
-  Aligned_allocator(const Aligned_allocator<U>&) {}
-  T* allocate(std::size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t(alignment))); }
-  void deallocate(T* p, std::size_t) { ::operator delete(p, std::align_val_t(alignment)); }
-  template <class U>
-  bool operator==(const Aligned_allocator<U>&) const { return true; }
-  template <class U>
-  bool operator!=(const Aligned_allocator<U>&) const { return false; }
-};
+using Aligned_allocator = boost::alignment::aligned_allocator<T, 64>;
 
 /// A vector of doubles in cache-line aligned storage.
 typedef std::vector<double, Aligned_allocator<double> > Aligned_vector;
@@ -90,10 +85,37 @@ CGAL_WAVEJETS_KERNEL_INLINE double reduce_block(const double* acc)
   return ((acc[0] + acc[4]) + (acc[2] + acc[6])) + ((acc[1] + acc[5]) + (acc[3] + acc[7]));
 }
 
-#if defined(__GNUC__) || defined(__clang__)
+#if (defined(__GNUC__) || defined(__clang__)) && !defined(CGAL_WAVEJETS_NO_VECTOR_EXTENSIONS)
 /// Four doubles (GCC/Clang vector extension: one AVX register, or two SSE2 registers with the same
 /// per-lane arithmetic). Unaligned memory is read and written with memcpy.
 typedef double Double4 __attribute__((vector_size(32)));
+#else
+/// Four doubles, for compilers without the vector extension: the same per-lane arithmetic (each
+/// operator below is what the extension does lane by lane), so the kernels, written once for
+/// `Double4`, give bitwise the same results; the compiler may vectorize the lanes.
+struct Double4
+{
+  double lane[4];
+  friend Double4 operator*(const Double4& a, const Double4& b)
+  {
+    return Double4{{a.lane[0] * b.lane[0], a.lane[1] * b.lane[1], a.lane[2] * b.lane[2], a.lane[3] * b.lane[3]}};
+  }
+  friend Double4 operator+(const Double4& a, double s) // broadcast
+  {
+    return Double4{{a.lane[0] + s, a.lane[1] + s, a.lane[2] + s, a.lane[3] + s}};
+  }
+  Double4& operator+=(const Double4& b)
+  {
+    for(int t = 0; t < 4; ++t) lane[t] += b.lane[t];
+    return *this;
+  }
+  Double4& operator-=(const Double4& b)
+  {
+    for(int t = 0; t < 4; ++t) lane[t] -= b.lane[t];
+    return *this;
+  }
+};
+#endif
 
 CGAL_WAVEJETS_KERNEL_INLINE void load4(Double4& r, const double* p) { std::memcpy(&r, p, sizeof r); }
 CGAL_WAVEJETS_KERNEL_INLINE void store4(double* p, const Double4& x) { std::memcpy(p, &x, sizeof x); }
@@ -199,46 +221,6 @@ CGAL_WAVEJETS_KERNEL_INLINE double householder_update_and_next(const double* v, 
   store4(acc + 4, hi);
   return reduce_block(acc);
 }
-#else
-/// w[m] = sum_{i = begin}^{end-1} v[i] x_m[i] for the M columns x_m = X + m * P (begin, end:
-/// multiples of householder_block), with one partial sum per row residue (see reduce_block()).
-template <int M>
-CGAL_WAVEJETS_KERNEL_INLINE void householder_dots(const double* v, const double* X, std::size_t P,
-                                                 std::size_t begin, std::size_t end, double* w)
-{
-  constexpr std::size_t W = householder_block;
-  for(int m = 0; m < M; ++m)
-  {
-    double acc[W] = {0., 0., 0., 0., 0., 0., 0., 0.};
-    for(std::size_t i = begin; i < end; i += W)
-      for(std::size_t t = 0; t < W; ++t) acc[t] += v[i + t] * X[m * P + i + t];
-    w[m] = reduce_block(acc);
-  }
-}
-
-/// x_m[i] -= s[m] v[i] for the M columns x_m = X + m * P, rows begin..end-1.
-template <int M>
-CGAL_WAVEJETS_KERNEL_INLINE void householder_updates(const double* v, double* X, std::size_t P, std::size_t begin,
-                                                    std::size_t end, const double* s)
-{
-  for(int m = 0; m < M; ++m)
-    for(std::size_t i = begin; i < end; ++i) X[m * P + i] -= s[m] * v[i];
-}
-
-/// x[i] -= s v[i] for rows begin..P-1, and column j's Householder vector started in vn (see the
-/// vectorized version); returns its squared norm.
-CGAL_WAVEJETS_KERNEL_INLINE double householder_update_and_next(const double* v, double s, double* x, std::size_t begin,
-                                                              std::size_t P, std::size_t j, double* vn)
-{
-  householder_updates<1>(v, x, P, begin, P, &s);
-  const std::size_t jb = j / householder_block * householder_block;
-  for(std::size_t i = jb; i < j; ++i) vn[i] = 0.;
-  for(std::size_t i = j; i < P; ++i) vn[i] = x[i];
-  double tail2;
-  householder_dots<1>(vn, vn, P, jb, P, &tail2);
-  return tail2;
-}
-#endif
 
 /// Completes the Householder vector v of column j from the squared norm `tail2` of its rows j..:
 /// `beta` = 2 / v.v and `alpha` = -sign(x_j)|x| (the diagonal entry of R). Returns false if the
@@ -344,17 +326,27 @@ CGAL_WAVEJETS_KERNEL_INLINE bool householder_kernel(double* A, std::size_t rows,
 }
 
 #ifdef CGAL_WAVEJETS_AVX_DISPATCH
-__attribute__((target("avx2,fma"))) inline bool householder_fma(double* A, std::size_t rows, std::size_t cols,
-                                                                double* v, double* c)
-{
-  return householder_kernel(A, rows, cols, v, c);
-}
-__attribute__((target("avx"))) inline bool householder_avx(double* A, std::size_t rows, std::size_t cols,
-                                                           double* v, double* c)
-{
-  return householder_kernel(A, rows, cols, v, c);
-}
+/// True if `householder_fma()` and `householder_avx()` are compiled for those instruction sets and
+/// picked at run time by `householder_least_squares()` (else they are the baseline code).
+constexpr bool avx_dispatch = true;
+#define CGAL_WAVEJETS_TARGET(instruction_sets) __attribute__((target(instruction_sets)))
+#else
+constexpr bool avx_dispatch = false;
+#define CGAL_WAVEJETS_TARGET(instruction_sets)
 #endif
+
+/// The kernel compiled for AVX2 + FMA (run it only where the processor has both).
+CGAL_WAVEJETS_TARGET("avx2,fma") inline bool householder_fma(double* A, std::size_t rows, std::size_t cols,
+                                                             double* v, double* c)
+{
+  return householder_kernel(A, rows, cols, v, c);
+}
+/// The kernel compiled for AVX (run it only where the processor has it).
+CGAL_WAVEJETS_TARGET("avx") inline bool householder_avx(double* A, std::size_t rows, std::size_t cols,
+                                                        double* v, double* c)
+{
+  return householder_kernel(A, rows, cols, v, c);
+}
 
 /// Solves min ||A c - b|| for a rows x cols matrix `A`. `A` is column-major with column stride
 /// padded_rows(rows), followed by `b` as column `cols`; rows `rows`..padded_rows(rows)-1 of every
@@ -382,5 +374,9 @@ inline bool householder_least_squares(double* A, std::size_t rows, std::size_t c
 } // namespace internal
 } // namespace Wavejets
 } // namespace CGAL
+
+#undef CGAL_WAVEJETS_TARGET
+#undef CGAL_WAVEJETS_KERNEL_INLINE
+#undef CGAL_WAVEJETS_AVX_DISPATCH
 
 #endif // CGAL_WAVEJETS_INTERNAL_LEAST_SQUARES_H
