@@ -1,20 +1,16 @@
 // Headless renderer (triangles and splats) and atomic output files of the `wavejets` tool (see render.h).
 #include "render.h"
+#include "platform.h"
 
 #include <png.h>
 
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
-#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <limits>
 #include <stdexcept>
-
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 namespace wavejets_demo {
 namespace {
@@ -255,48 +251,35 @@ Image read_png(const std::string& path)
 }
 
 // ---------------------------------------------------------------------------------------------
-// Atomic output files. The signal handler removes the one temporary file in progress, if any.
+// Atomic output files. The interrupt handler removes the one temporary file in progress, if any.
 namespace {
 char g_temporary[4096] = {0};
-extern "C" void remove_temporary_and_exit(int sig)
-{
-  if(g_temporary[0] != 0) unlink(g_temporary);
-  const char msg[] = "\nwavejets: interrupted, nothing written\n";
-  ssize_t ignored = write(2, msg, sizeof(msg) - 1);
-  (void)ignored;
-  _exit(128 + sig);
-}
 } // namespace
 
 Output_file::Output_file(const std::string& path) : path_(path)
 {
   static bool handlers = false;
   if(!handlers) {
-    std::signal(SIGINT, remove_temporary_and_exit);
-    std::signal(SIGTERM, remove_temporary_and_exit);
+    remove_on_interrupt(g_temporary);
     handlers = true;
   }
   const std::size_t slash = path.find_last_of('/');
   const std::string dir = slash == std::string::npos ? "." : path.substr(0, slash + 1 == 1 ? 1 : slash);
   const std::string base = slash == std::string::npos ? path : path.substr(slash + 1);
   if(base.empty()) throw std::runtime_error(path + ": names a folder, not a file");
-  std::string pattern = dir + "/." + base + ".tmp-XXXXXX";
-  if(pattern.size() >= sizeof(g_temporary)) throw std::runtime_error(path + ": the path is too long");
-  std::vector<char> buffer(pattern.begin(), pattern.end());
-  buffer.push_back('\0');
-  const int fd = mkstemp(buffer.data());
-  if(fd < 0) throw std::runtime_error(path + ": cannot create a file in " + dir + " (" + std::strerror(errno) + ")");
-  const mode_t mask = umask(0);
-  umask(mask);
-  if(fchmod(fd, 0666 & ~mask) != 0) { /* keep the 0600 of mkstemp */ }
-  close(fd);
-  tmp_ = buffer.data();
+  const std::string prefix = dir + "/." + base + ".tmp-";
+  if(prefix.size() + 7 >= sizeof(g_temporary)) throw std::runtime_error(path + ": the path is too long");
+  try {
+    tmp_ = create_unique_file(prefix);
+  } catch(const std::runtime_error& e) {
+    throw std::runtime_error(path + ": cannot create a file in " + dir + " (" + e.what() + ")");
+  }
   std::strcpy(g_temporary, tmp_.c_str());
 }
 
 Output_file::~Output_file()
 {
-  if(!committed_) unlink(tmp_.c_str());
+  if(!committed_) std::remove(tmp_.c_str());
   g_temporary[0] = 0;
 }
 

@@ -24,6 +24,7 @@
 #include <tbb/info.h>
 #endif
 
+#include "platform.h"
 #include "render.h"
 
 #include <algorithm>
@@ -41,6 +42,7 @@
 #include <iostream>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -48,7 +50,6 @@
 #include <tuple>
 #include <vector>
 
-#include <unistd.h>
 
 typedef CGAL::Exact_predicates_inexact_constructions_kernel Kernel;
 typedef Kernel::Point_3 Point;
@@ -364,7 +365,7 @@ Options parse_command_line(int argc, char** argv)
 class Progress
 {
 public:
-  explicit Progress(bool enabled) : enabled_(enabled && isatty(2)) {}
+  explicit Progress(bool enabled) : enabled_(enabled && wavejets_demo::stderr_is_terminal()) {}
   std::function<bool(double)> stage(const std::string& label)
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -586,14 +587,16 @@ auto fit_parameters(const Extra& extra, const Neighborhood& n, Point_set& points
 }
 
 // Writable bool property map storing into a uchar property (PLY has no bool).
+// The functions' fitted_map: writes the "fitted" property, or nothing when it has none (one call
+// of a function serves both cases).
 struct Fitted_map
 {
   typedef Point_set::Index key_type;
   typedef bool value_type;
   typedef bool reference;
   typedef boost::writable_property_map_tag category;
-  Point_set::Property_map<unsigned char> map;
-  friend void put(const Fitted_map& m, key_type k, bool v) { m.map[k] = v ? 1 : 0; }
+  std::optional<Point_set::Property_map<unsigned char> > map;
+  friend void put(const Fitted_map& m, key_type k, bool v) { if(m.map) (*m.map)[k] = v ? 1 : 0; }
 };
 
 struct Run_log
@@ -604,17 +607,14 @@ struct Run_log
 
 // Estimates normals where the input has none, then orients them by a minimum spanning tree.
 // mst_orient_normals reorders its range, so it runs on a copy that remembers the indices.
-void ensure_oriented_normals(Point_set& points, const Neighborhood& n, std::size_t order, const Fitted_map* fitted,
+void ensure_oriented_normals(Point_set& points, const Neighborhood& n, std::size_t order, const Fitted_map& fitted,
                              Progress& progress, Run_log& log)
 {
   if(points.has_normal_map()) return;
   points.add_normal_map(Vector(0, 0, 0));
   const Clock::time_point t0 = Clock::now();
-  const CGAL::Wavejets::Processing_report r = fitted
-    ? CGAL::wavejet_estimate_normals<Concurrency_tag>(points, n.k,
-        fit_parameters(WP::order(order).fitted_map(*fitted), n, points, progress.stage("estimating normals")))
-    : CGAL::wavejet_estimate_normals<Concurrency_tag>(points, n.k,
-        fit_parameters(WP::order(order), n, points, progress.stage("estimating normals")));
+  const CGAL::Wavejets::Processing_report r = CGAL::wavejet_estimate_normals<Concurrency_tag>(points, n.k,
+    fit_parameters(WP::order(order).fitted_map(fitted), n, points, progress.stage("estimating normals")));
   progress.done();
   typedef std::tuple<Point, Vector, std::size_t> Item;
   std::vector<Item> items;
@@ -828,9 +828,9 @@ int run_fit_command_on_input(const Options& o, Progress& progress)
     log.fit_seconds += seconds_since(t);
     what = "Normals (order " + std::to_string(order) + ", oriented like the input normals): " + report_text(r) + ".";
   } else if(bit == NORMALS) {
-    ensure_oriented_normals(points, n, order, &fitted_map, progress, log);
+    ensure_oriented_normals(points, n, order, fitted_map, progress, log);
   } else {
-    ensure_oriented_normals(points, n, 2, nullptr, progress, log);
+    ensure_oriented_normals(points, n, 2, Fitted_map{}, progress, log);
     const Clock::time_point t = Clock::now();
     if(bit == CURVATURE) {
       Point_set::Property_map<double> H = double_property(points, "mean_curvature"),

@@ -1,0 +1,25 @@
+// The operating-system services of the `wavejets` tool, in one place: everything else in demo/Wavejets
+// is standard C++17. POSIX systems get the full behaviour; elsewhere (e.g. Windows) the standard
+// library's equivalents, noted at each function.
+#ifndef WAVEJETS_DEMO_PLATFORM_H
+#define WAVEJETS_DEMO_PLATFORM_H
+
+#include <string>
+
+namespace wavejets_demo {
+
+/// Whether standard error is a terminal (the progress bar is drawn only then).
+bool stderr_is_terminal();
+
+/// Creates a new empty file whose name is `prefix` followed by random characters, with the
+/// permissions a new file gets by default (fopen's "x" mode: never an existing file); returns its
+/// name. Throws std::runtime_error if the folder does not take new files.
+std::string create_unique_file(const std::string& prefix);
+
+/// On SIGINT and SIGTERM: removes the file named in `path` (if not empty), prints that nothing was
+/// written, and exits with 128 + the signal number. `path` must stay valid; it is read by the handler.
+void remove_on_interrupt(const char* path);
+
+} // namespace wavejets_demo
+
+#endif // WAVEJETS_DEMO_PLATFORM_H
