@@ -5,7 +5,7 @@
 // tiny/huge scales, far translations, NaN/inf injection, orders 0-12, random options) and the four
 // point-set functions random small point sets and parameters (see fuzz_harness.h). Asserts no
 // crash, finite outputs or the documented failure state, and only the documented exceptions
-// (CGAL::Precondition_exception for order 0 in the class, std::invalid_argument for invalid
+// (std::invalid_argument for order 0 in the class and for invalid
 // function parameters, thrown exactly when the parameters are invalid).
 //
 // The count is of real fits only: calls of the fitting core with order >= 1 on accepted
@@ -73,9 +73,9 @@ int main(int argc, char** argv)
   std::cout << "seed " << seed << ": " << real() << " real fits (target " << target << ") in " << secs << " s ("
             << real() / (secs > 0 ? secs : 1) << " real fits/s)\n"
             << "  Wavejet_fitting: " << st.fits << " calls: " << st.real_fits << " real fits (" << st.valid_fits
-            << " valid forms in all, " << st.failed_fits << " failure states in all), " << st.precondition_exceptions
-            << " order 0 (Precondition_exception), " << st.non_finite_fits << " NON_FINITE_INPUT, "
-            << st.fits - st.real_fits - st.precondition_exceptions - st.non_finite_fits << " empty ranges\n"
+            << " valid forms in all, " << st.failed_fits << " failure states in all), " << st.order_zero_rejections
+            << " order 0 (std::invalid_argument), " << st.non_finite_fits << " NON_FINITE_INPUT, "
+            << st.fits - st.real_fits - st.order_zero_rejections - st.non_finite_fits << " empty ranges\n"
             << "  functions: " << st.function_calls << " calls: " << st.function_calls - st.invalid_argument
             << " accepted, with " << st.function_real_fits << " real fits (" << st.fitted_points << " fitted), "
             << st.invalid_argument << " rejected (std::invalid_argument)" << std::endl;

@@ -9,15 +9,28 @@
 //     supports (bitwise equal to it), so a processor without AVX falls back to the baseline;
 //   - a rank-deficient system is reported (false) by every variant.
 // A clone the processor cannot run is reported as skipped, never run.
+// The kernels are written once for a four-lane type: the GCC/Clang vector extension, or (built with
+// CGAL_WAVEJETS_NO_VECTOR_EXTENSIONS, as other compilers get) a plain struct. `--write FILE` saves the
+// baseline kernel's solutions bit for bit; `--compare FILE` checks that this build's baseline gives
+// the same bits: CTest runs the vector build with --write and the portable build
+// (test_simd_kernels_portable) with --compare.
 
 #include <CGAL/Wavejets/internal/least_squares.h>
 
 #include <Eigen/Dense>
 
+#ifdef CGAL_WAVEJETS_NO_VECTOR_EXTENSIONS
+#define CGAL_WAVEJETS_FOUR_LANES "portable (struct)"
+#else
+#define CGAL_WAVEJETS_FOUR_LANES "vector-extension"
+#endif
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <fstream>
 #include <iostream>
 #include <random>
 #include <string>
@@ -73,7 +86,36 @@ static double relative_difference(const std::vector<double>& a, const std::vecto
   return n > 0 ? d / n : d;
 }
 
-int main()
+/// Writes (`write`) or compares the baseline solutions, as exact hexadecimal doubles.
+static void baseline_file(const std::vector<System>& systems, const std::string& mode, const std::string& path)
+{
+  std::vector<double> all, c;
+  for(const System& s : systems)
+  {
+    solve(&WI::householder_kernel, s, c);
+    all.insert(all.end(), c.begin(), c.end());
+  }
+  if(mode == "--write")
+  {
+    std::ofstream out(path);
+    char b[64];
+    for(double x : all) { std::snprintf(b, sizeof b, "%a\n", x); out << b; }
+    check(bool(out), "baseline solutions written to " + path);
+    return;
+  }
+  std::ifstream in(path);
+  std::vector<double> reference;
+  std::string line;
+  while(std::getline(in, line)) reference.push_back(std::strtod(line.c_str(), nullptr));
+  std::size_t same = 0;
+  for(std::size_t i = 0; i < all.size() && i < reference.size(); ++i)
+    same += std::memcmp(&all[i], &reference[i], sizeof(double)) == 0;
+  check(reference.size() == all.size() && same == all.size(),
+        std::string(CGAL_WAVEJETS_FOUR_LANES) + " build vs " + path + ": " + std::to_string(same) + " of " +
+          std::to_string(reference.size()) + " baseline values bitwise equal");
+}
+
+int main(int argc, char** argv)
 {
   std::mt19937_64 random(20261201);
   std::uniform_real_distribution<double> uniform(-1., 1.);
@@ -153,6 +195,11 @@ int main()
   if(has_avx) reported = reported && !solve(&WI::householder_avx, deficient, c);
   if(has_fma) reported = reported && !solve(&WI::householder_fma, deficient, c);
   check(reported, "a rank-deficient system is reported by every variant");
+  const std::string mode = argc > 1 ? argv[1] : "";
+  if(argc == 3 && (mode == "--write" || mode == "--compare"))
+    baseline_file(systems, mode, argv[2]);
+  else
+    check(argc == 1, "arguments: none, or --write FILE, or --compare FILE");
 
   std::cout << checks - failures << " passed, " << failures << " failed" << std::endl;
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;

@@ -174,8 +174,11 @@ Driver_settings read_settings(PointRange& points, unsigned int k, const NP& np, 
     s.fitting.correction_iterations = 0;
   s.restrict_to_consistent_normals = choose_parameter(get_parameter(np, wnp::restrict_to_consistent_normals), false);
   s.use_neighbor_normals = choose_parameter(get_parameter(np, wnp::use_neighbor_normals), false);
-  s.write_normals = choose_parameter(get_parameter(np, wnp::write_normals), false);
-  s.move_along_input_normals = choose_parameter(get_parameter(np, wnp::move_along_input_normals), false);
+  // The filters' own parameters are read (and checked) by the functions that use them only.
+  const bool filter = f == Point_set_function::ENHANCE_POSITIONS || f == Point_set_function::ENHANCE_NORMALS;
+  const bool moves = f == Point_set_function::ENHANCE_POSITIONS;
+  s.write_normals = moves && choose_parameter(get_parameter(np, wnp::write_normals), false);
+  s.move_along_input_normals = moves && choose_parameter(get_parameter(np, wnp::move_along_input_normals), false);
   s.callback = choose_parameter(get_parameter(np, CGAL::internal_np::callback), std::function<bool(double)>());
 
   const bool has_normals = has_normal_map(points, np);
@@ -190,13 +193,19 @@ Driver_settings read_settings(PointRange& points, unsigned int k, const NP& np, 
   s.read_input_normals = has_normals && (d.orients_with_input_normals || asked);
   s.orient_with_input_normals = s.read_input_normals;
 
-  s.evaluation_radius = to_double(choose_parameter(get_parameter(np, wnp::evaluation_radius), 0.));
-  require(std::isfinite(s.evaluation_radius) && s.evaluation_radius >= 0, fn, "evaluation_radius must be finite and >= 0");
+  if(filter)
+  {
+    s.evaluation_radius = to_double(choose_parameter(get_parameter(np, wnp::evaluation_radius), 0.));
+    require(std::isfinite(s.evaluation_radius) && s.evaluation_radius >= 0, fn, "evaluation_radius must be finite and >= 0");
+  }
   s.maximum_displacement_in_radii = d.maximum_displacement_in_radii;
   if constexpr(!is_default_parameter<NP, wnp::maximum_displacement_t>::value)
   {
-    s.maximum_displacement = to_double(get_parameter(np, wnp::maximum_displacement));
-    require(s.maximum_displacement > 0, fn, "maximum_displacement must be > 0 (infinity switches the clamp off)");
+    if(moves)
+    {
+      s.maximum_displacement = to_double(get_parameter(np, wnp::maximum_displacement));
+      require(s.maximum_displacement > 0, fn, "maximum_displacement must be > 0 (infinity switches the clamp off)");
+    }
   }
   return s;
 }
