@@ -1,4 +1,4 @@
-// Tests of the accuracy benchmark's building blocks (benchmark/Wavejets/analytic_surfaces.h) and a
+// Tests of the accuracy benchmark's building blocks (support/analytic_surfaces.h) and a
 // small configuration of the benchmark: analytic truth against finite differences, uniform
 // sampling, error metrics, and Wavejet curvature/normal error against CGAL jets on clean samples.
 
@@ -9,7 +9,7 @@
 #include <CGAL/wavejet_estimate_normals.h>
 #include <CGAL/Wavejets/internal/neighbor_query.h>
 
-#include "../../benchmark/Wavejets/analytic_surfaces.h"
+#include "support/analytic_surfaces.h"
 
 #include <cassert>
 #include <cmath>

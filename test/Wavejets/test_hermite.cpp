@@ -14,7 +14,7 @@
 #include <CGAL/wavejet_estimate_curvatures.h>
 #include <CGAL/wavejet_estimate_normals.h>
 
-#include "../../benchmark/Wavejets/analytic_surfaces.h"
+#include "support/analytic_surfaces.h"
 
 #include <cmath>
 #include <cstring>

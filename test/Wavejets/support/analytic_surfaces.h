@@ -7,11 +7,12 @@
 //
 // Author(s) : The CGAL Wavejets developers
 
-#ifndef WAVEJETS_BENCHMARK_ANALYTIC_SURFACES_H
-#define WAVEJETS_BENCHMARK_ANALYTIC_SURFACES_H
+#ifndef WAVEJETS_TEST_ANALYTIC_SURFACES_H
+#define WAVEJETS_TEST_ANALYTIC_SURFACES_H
 
 // Surfaces with exact normals and curvatures, uniform samplers, perturbations and error metrics,
-// shared by benchmark/Wavejets/bench_accuracy.cpp and test/Wavejets/test_accuracy.cpp.
+// shared by the tests (test_accuracy, test_hermite) and the benchmarks (bench_accuracy,
+// bench_ponca_accuracy: their CMake target has test/Wavejets/support on its include path).
 // Header-only, depends on Eigen and the standard library only.
 //
 // Conventions (those of the package, WAVEJETS_MATH.md §3): normals point outward; curvature
@@ -586,4 +587,4 @@ inline Truth finite_difference_truth(const Surface& S, const V3& p, double h, do
 
 } // namespace wavejets_bench
 
-#endif // WAVEJETS_BENCHMARK_ANALYTIC_SURFACES_H
+#endif // WAVEJETS_TEST_ANALYTIC_SURFACES_H
