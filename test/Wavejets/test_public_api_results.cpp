@@ -36,13 +36,9 @@
 #include <utility>
 #include <vector>
 
-typedef CGAL::Epick Kernel;
-typedef Kernel::Point_3 Point;
-typedef Kernel::Vector_3 Vector;
-typedef std::pair<Point, Vector> PV;
-typedef CGAL::First_of_pair_property_map<PV> Point_map;
-typedef CGAL::Second_of_pair_property_map<PV> Normal_map;
-typedef CGAL::Sequential_tag Seq;
+#include "wavejets_test_types.h"
+
+using namespace wavejets_test::types;
 namespace WJP = CGAL::Wavejets::parameters;
 
 /// Labelled records of doubles, written as text.

@@ -23,15 +23,11 @@
 #include <string>
 #include <vector>
 
-namespace WI = CGAL::Wavejets::internal;
+#include "wavejets_test_support.h"
 
-static int failures = 0, checks = 0;
-static void check(bool ok, const std::string& what)
-{
-  ++checks;
-  std::cout << (ok ? "[ OK ] " : "[FAIL] ") << what << std::endl;
-  if(!ok) ++failures;
-}
+namespace WI = CGAL::Wavejets::internal;
+using wavejets_test::Case;
+using wavejets_test::check_printed;
 
 typedef bool (*Kernel)(double*, std::size_t, std::size_t, double*, double*);
 
@@ -73,7 +69,8 @@ static double relative_difference(const std::vector<double>& a, const std::vecto
   return n > 0 ? d / n : d;
 }
 
-int main()
+/// The random full-rank systems: the sizes of the Wavejet systems and a few others.
+static std::vector<System> random_systems()
 {
   std::mt19937_64 random(20261201);
   std::uniform_real_distribution<double> uniform(-1., 1.);
@@ -92,12 +89,23 @@ int main()
         }
         systems.push_back(s);
       }
+  return systems;
+}
 
 #ifdef CGAL_WAVEJETS_AVX_DISPATCH
-  const bool has_avx = __builtin_cpu_supports("avx");
-  const bool has_fma = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+static bool processor_has_avx() { return __builtin_cpu_supports("avx"); }
+static bool processor_has_fma() { return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"); }
 #else
-  const bool has_avx = false, has_fma = false;
+static bool processor_has_avx() { return false; }
+static bool processor_has_fma() { return false; }
+#endif
+
+// Every variant on the same full-rank systems: the documented agreement, and the dispatch.
+static void test_full_rank_agreement()
+{
+  const std::vector<System> systems = random_systems();
+  const bool has_avx = processor_has_avx(), has_fma = processor_has_fma();
+#ifndef CGAL_WAVEJETS_AVX_DISPATCH
   std::cout << "this build has no AVX dispatch (not x86 with g++/clang++, or CGAL_WAVEJETS_NO_AVX_DISPATCH): "
                "the baseline kernel alone is checked" << std::endl;
 #endif
@@ -134,20 +142,26 @@ int main()
     dispatch_ok = dispatch_ok && dispatched == best;
   }
   const std::string n = std::to_string(systems.size()) + " systems";
-  check(all_solved, "every variant solves the " + n + " (full rank)");
-  check(worst_baseline <= 1e-13, "baseline vs Eigen HouseholderQR: " + sci(worst_baseline) +
+  check_printed(all_solved, "every variant solves the " + n + " (full rank)");
+  check_printed(worst_baseline <= 1e-13, "baseline vs Eigen HouseholderQR: " + sci(worst_baseline) +
                                    " relative / condition number (<= 1e-13)");
-  if(has_avx) check(avx_bitwise, "AVX clone == baseline, bitwise, on " + n);
+  if(has_avx) check_printed(avx_bitwise, "AVX clone == baseline, bitwise, on " + n);
   else std::cout << "[SKIP] AVX clone: the processor has no AVX" << std::endl;
-  if(has_fma) check(fma_close, "AVX2 + FMA clone vs baseline: " + sci(worst_fma) +
+  if(has_fma) check_printed(fma_close, "AVX2 + FMA clone vs baseline: " + sci(worst_fma) +
                                  " relative / condition number (<= 1e-12); bits differ on " +
                                  std::to_string(fma_differs) + " of " + n);
   else std::cout << "[SKIP] AVX2 + FMA clone: the processor has no AVX2 + FMA" << std::endl;
-  check(dispatch_ok, std::string("the dispatch picks the ") + (has_fma ? "AVX2 + FMA" : has_avx ? "AVX" : "baseline") +
+  check_printed(dispatch_ok, std::string("the dispatch picks the ") + (has_fma ? "AVX2 + FMA" : has_avx ? "AVX" : "baseline") +
                        " kernel (bitwise equal to it)");
+}
 
-  // A rank-deficient system (two equal columns) is reported by every variant.
-  System deficient = systems.back();
+// A rank-deficient system (two equal columns) is reported by every variant.
+static void test_rank_deficient_reported()
+{
+  const bool has_avx = processor_has_avx(), has_fma = processor_has_fma();
+  (void)has_avx; // used only with the dispatch
+  (void)has_fma;
+  System deficient = random_systems().back();
   deficient.M.col(3) = deficient.M.col(1);
   std::vector<double> c;
   bool reported = !solve(&WI::householder_kernel, deficient, c) && !solve(&WI::householder_least_squares, deficient, c);
@@ -155,8 +169,13 @@ int main()
   if(has_avx) reported = reported && !solve(&WI::householder_avx, deficient, c);
   if(has_fma) reported = reported && !solve(&WI::householder_fma, deficient, c);
 #endif
-  check(reported, "a rank-deficient system is reported by every variant");
+  check_printed(reported, "a rank-deficient system is reported by every variant");
+}
 
-  std::cout << checks - failures << " passed, " << failures << " failed" << std::endl;
-  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+int main(int argc, char** argv)
+{
+  return wavejets_test::run_cases(argc, argv, {
+    Case{"kernels.full_rank_agreement", test_full_rank_agreement},
+    Case{"kernels.rank_deficient_reported", test_rank_deficient_reported},
+  });
 }
