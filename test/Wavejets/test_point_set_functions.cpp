@@ -43,6 +43,7 @@
 #include <utility>
 #include <vector>
 
+#include "analytic_surfaces.h"
 #include "wavejets_test_support.h"
 #include "wavejets_test_types.h"
 
@@ -472,9 +473,9 @@ static PV_range make_sphere(std::size_t N, double R)
   return pts;
 }
 // Torus (R, r) on a golden-ratio lattice in (u, v); outward normals, and (if `t`) its exact
-// curvatures and principal directions (wavejets_test::Parametric_torus): k1 = -cos v/(R + r cos v)
-// along the parallel (d/du), k2 = -1/r along the meridian (d/dv); with R > 2r, k1 >= -1/(R + r) >
-// -1/r = k2 everywhere (no umbilic: gap k1 - k2 >= 1/r - 1/(R + r)).
+// curvatures and principal directions (Parametric_torus, support/analytic_surfaces.h):
+// k1 = -cos v/(R + r cos v) along the parallel (d/du), k2 = -1/r along the meridian (d/dv); with
+// R > 2r, k1 >= -1/(R + r) > -1/r = k2 everywhere (no umbilic: gap k1 - k2 >= 1/r - 1/(R + r)).
 struct Torus_truth
 {
   std::vector<double> H, KG, k1, k2;
@@ -482,23 +483,23 @@ struct Torus_truth
 };
 static PV_range make_torus(std::size_t N, double R, double r, Torus_truth* t = nullptr)
 {
-  const wavejets_test::Parametric_torus torus{R, r};
+  const wavejets_bench::Parametric_torus torus{R, r};
   PV_range pts;
   const double phi = (std::sqrt(5.) - 1.) / 2.;
   for(std::size_t i = 0; i < N; ++i)
   {
     const double u = 2. * PI * (double(i) + 0.5) / double(N);
     const double v = 2. * PI * std::fmod(double(i) * phi, 1.);
-    const auto p = torus.point(u, v), n = torus.outward_normal(u, v);
-    pts.emplace_back(Point(p.x, p.y, p.z), Vector(n.x, n.y, n.z));
+    const Eigen::Vector3d p = torus.point(u, v), n = torus.outward_normal(u, v);
+    pts.emplace_back(Point(p.x(), p.y(), p.z()), Vector(n.x(), n.y(), n.z()));
     if(!t) continue;
     t->H.push_back(torus.mean_curvature(v));
     t->KG.push_back(torus.gaussian_curvature(v));
     t->k1.push_back(torus.parallel_curvature(v));
     t->k2.push_back(torus.meridian_curvature());
-    const auto d1 = torus.parallel_direction(u), d2 = torus.meridian_direction(u, v);
-    t->d1.push_back(Vector(d1.x, d1.y, d1.z));
-    t->d2.push_back(Vector(d2.x, d2.y, d2.z));
+    const Eigen::Vector3d d1 = torus.parallel_direction(u), d2 = torus.meridian_direction(u, v);
+    t->d1.push_back(Vector(d1.x(), d1.y(), d1.z()));
+    t->d2.push_back(Vector(d2.x(), d2.y(), d2.z()));
   }
   return pts;
 }

@@ -33,6 +33,7 @@
 #include <utility>
 #include <vector>
 
+#include "analytic_surfaces.h"
 #include "wavejets_test_support.h"
 
 typedef CGAL::Exact_predicates_inexact_constructions_kernel EK;
@@ -230,23 +231,22 @@ std::vector<Point> sample_graph(const Local_frame& F, const std::function<double
 }
 
 // Torus ((R0 + r0 cos psi) cos phi, (R0 + r0 cos psi) sin phi, r0 sin psi), placed by (Rot, T);
-// its exact quantities are those of wavejets_test::Parametric_torus (support/wavejets_test_support.h).
+// its exact quantities are those of Parametric_torus (support/analytic_surfaces.h).
 struct Torus
 {
   double R0 = 3, r0 = 1;
   Matrix3d Rot = Matrix3d::Identity();
   Vector3d T = Vector3d::Zero();
-  wavejets_test::Parametric_torus shape() const { return wavejets_test::Parametric_torus{R0, r0}; }
-  static Vector3d E3(const wavejets_test::Parametric_torus::Local& l) { return Vector3d(l.x, l.y, l.z); }
-  Vector3d point(double phi, double psi) const { return Rot * E3(shape().point(phi, psi)) + T; }
-  Vector3d outward_normal(double phi, double psi) const { return Rot * E3(shape().outward_normal(phi, psi)); }
+  wavejets_bench::Parametric_torus shape() const { return wavejets_bench::Parametric_torus{R0, r0}; }
+  Vector3d point(double phi, double psi) const { return Rot * shape().point(phi, psi) + T; }
+  Vector3d outward_normal(double phi, double psi) const { return Rot * shape().outward_normal(phi, psi); }
   Truth truth(double phi, double psi) const
   {
-    const wavejets_test::Parametric_torus S = shape();
+    const wavejets_bench::Parametric_torus S = shape();
     Truth t;
     const double kpar = S.parallel_curvature(psi), kmer = S.meridian_curvature();
-    const Vector3d dphi = Rot * E3(S.parallel_direction(phi));
-    const Vector3d dpsi = Rot * E3(S.meridian_direction(phi, psi));
+    const Vector3d dphi = Rot * S.parallel_direction(phi);
+    const Vector3d dpsi = Rot * S.meridian_direction(phi, psi);
     t.k1 = (std::max)(kpar, kmer);
     t.k2 = (std::min)(kpar, kmer);
     t.d1 = kpar >= kmer ? dphi : dpsi;

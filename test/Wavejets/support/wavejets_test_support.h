@@ -23,8 +23,8 @@
 // - Gauss: a portable deterministic standard normal;
 // - Vector_slot_map: a read-write property map keyed by the elements of a std::vector (by
 //   address) that stores its values in another std::vector;
-// - the parametric torus with its exact normals and curvatures (Parametric_torus).
-// The analytic surfaces of the accuracy tests and benchmarks are in analytic_surfaces.h.
+// The analytic surfaces with their exact normals and curvatures (tests and benchmarks) are in
+// analytic_surfaces.h.
 
 #include <boost/property_map/property_map.hpp>
 
@@ -246,39 +246,6 @@ Vector_slot_map<Key, T> slot_map(const std::vector<Key>& r, std::vector<T>& d)
   d.resize(r.size());
   return Vector_slot_map<Key, T>{r.data(), &d};
 }
-
-// ------------------------------------------------------------------------------------------------
-// Parametric torus with its exact differential quantities
-
-/// The torus ((R + r cos v) cos u, (R + r cos v) sin u, r sin v) of axis z, with the outward
-/// normal. Curvatures w.r.t. the outward normal (the torus bends away from it): along the
-/// parallel (d/du) -cos v / (R + r cos v), along the meridian (d/dv) -1/r.
-struct Parametric_torus
-{
-  double R = 3., r = 1.;
-  struct Local
-  {
-    double x, y, z;
-  };
-  Local point(double u, double v) const
-  {
-    const double w = R + r * std::cos(v);
-    return {w * std::cos(u), w * std::sin(u), r * std::sin(v)};
-  }
-  Local outward_normal(double u, double v) const
-  {
-    return {std::cos(v) * std::cos(u), std::cos(v) * std::sin(u), std::sin(v)};
-  }
-  double parallel_curvature(double v) const { return -std::cos(v) / (R + r * std::cos(v)); }
-  double meridian_curvature() const { return -1. / r; }
-  double mean_curvature(double v) const { return 0.5 * (parallel_curvature(v) + meridian_curvature()); }
-  double gaussian_curvature(double v) const { return parallel_curvature(v) * meridian_curvature(); }
-  Local parallel_direction(double u) const { return {-std::sin(u), std::cos(u), 0.}; }
-  Local meridian_direction(double u, double v) const
-  {
-    return {-std::sin(v) * std::cos(u), -std::sin(v) * std::sin(u), std::cos(v)};
-  }
-};
 
 } // namespace wavejets_test
 
