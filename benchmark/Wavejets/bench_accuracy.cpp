@@ -1,5 +1,5 @@
 // Accuracy benchmark: curvature and normal error of Wavejets against CGAL jets (and PCA normals)
-// on surfaces with exact answers (benchmark/Wavejets/analytic_surfaces.h), clean and perturbed.
+// on surfaces with exact answers (test/Wavejets/support/analytic_surfaces.h), clean and perturbed.
 //
 // Every surface is sampled uniformly (fixed seeds) with N points (default 20000; the full run with
 // 50000 points and 300 evaluation points takes about 40 minutes on 2 cores) in [-1, 1]^3.
@@ -1194,7 +1194,7 @@ int main(int argc, char** argv)
      << "    build/bench/benchmark/Wavejets/" << o.command << "\n\n"
      << "Machine: " << machine_description() << ". Total run time " << fmt(total_seconds, 3) << " s.\n\n";
   md << "## Setup\n\n"
-     << "- Surfaces (`benchmark/Wavejets/analytic_surfaces.h`), all in [-1, 1]^3 with half-extent 1, " << o.points
+     << "- Surfaces (`test/Wavejets/support/analytic_surfaces.h`), all in [-1, 1]^3 with half-extent 1, " << o.points
      << " points each, fixed seeds:\n"
      << "  sphere (R = 1); ellipsoid (semi-axes 1, 0.7, 0.5); torus (R = 0.7, r = 0.3); open cylinder (radius 0.5,"
         " |z| <= 1); Goursat quartic x^4+y^4+z^4 + a(x^2+y^2+z^2)^2 + b(x^2+y^2+z^2) + c = 0 with a = 0, b = -5, c = 11.8"

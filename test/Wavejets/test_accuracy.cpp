@@ -1,4 +1,4 @@
-// Tests of the accuracy benchmark's building blocks (benchmark/Wavejets/analytic_surfaces.h) and a
+// Tests of the accuracy benchmark's building blocks (support/analytic_surfaces.h) and a
 // small configuration of the benchmark: analytic truth against finite differences, uniform
 // sampling, error metrics, and Wavejet curvature/normal error against CGAL jets on clean samples.
 
@@ -9,7 +9,8 @@
 #include <CGAL/wavejet_estimate_normals.h>
 #include <CGAL/Wavejets/internal/neighbor_query.h>
 
-#include "../../benchmark/Wavejets/analytic_surfaces.h"
+#include "analytic_surfaces.h"
+#include "wavejets_test_support.h"
 
 #include <cassert>
 #include <cmath>
@@ -23,11 +24,7 @@ typedef Kernel::Vector_3 Vector;
 namespace WB = wavejets_bench;
 namespace WP = CGAL::Wavejets::parameters;
 
-static int failures = 0;
-#define CHECK(cond, what)                                                                          \
-  do {                                                                                             \
-    if(!(cond)) { std::cerr << "FAILED: " << what << " (" #cond ")\n"; ++failures; }               \
-  } while(0)
+using wavejets_test::Case;
 
 static bool close(double a, double b, double tol) { return std::abs(a - b) <= tol * (1. + std::abs(b)); }
 
@@ -243,13 +240,12 @@ static void test_small_benchmark()
   }
 }
 
-int main()
+int main(int argc, char** argv)
 {
-  test_truth_against_finite_differences();
-  test_sphere_and_metrics();
-  test_uniform_sampling();
-  test_small_benchmark();
-  if(failures) { std::cerr << failures << " check(s) failed\n"; return 1; }
-  std::cout << "test_accuracy: all checks passed\n";
-  return 0;
+  return wavejets_test::run_cases(argc, argv, {
+    Case{"surfaces.truth_against_finite_differences", test_truth_against_finite_differences},
+    Case{"surfaces.sphere_and_error_metrics", test_sphere_and_metrics},
+    Case{"surfaces.uniform_sampling", test_uniform_sampling},
+    Case{"small_benchmark", test_small_benchmark},
+  });
 }

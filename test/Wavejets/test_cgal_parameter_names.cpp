@@ -28,23 +28,14 @@
 #include <utility>
 #include <vector>
 
-typedef CGAL::Epick Kernel;
-typedef Kernel::Point_3 Point;
-typedef Kernel::Vector_3 Vector;
-typedef std::pair<Point, Vector> PV;
-typedef CGAL::First_of_pair_property_map<PV> Point_map;
-typedef CGAL::Second_of_pair_property_map<PV> Normal_map;
-typedef CGAL::Sequential_tag Seq;
+#include "wavejets_test_support.h"
+#include "wavejets_test_types.h"
+
+using namespace wavejets_test::types;
 namespace WJP = CGAL::Wavejets::parameters;
 
-static int failures = 0;
-static int checks = 0;
-static void check(bool ok, const std::string& what)
-{
-  ++checks;
-  std::cout << (ok ? "[ OK ] " : "[FAIL] ") << what << std::endl;
-  if(!ok) ++failures;
-}
+using wavejets_test::Case;
+using wavejets_test::check_printed;
 
 /// Runs `f`; true if it threw std::invalid_argument whose message contains every word of `words`.
 static bool throws_naming(const std::function<void()>& f, const std::vector<std::string>& words)
@@ -103,11 +94,11 @@ static void test_degree_fitting(const std::vector<PV>& input)
   CGAL::wavejet_estimate_normals<Seq>(by_order, 18, WJP::order(4, pm));
   CGAL::wavejet_estimate_normals<Seq>(by_degree, 18, pm.degree_fitting(4));
   CGAL::wavejet_estimate_normals<Seq>(by_default, 18, pm);
-  check(same_points(by_order, by_degree, true), "estimate_normals: degree_fitting(4) gives order(4)'s normals bitwise");
-  check(!same_points(by_order, by_default, true), "estimate_normals: degree_fitting(4) is not ignored (differs from the default order 2)");
+  check_printed(same_points(by_order, by_degree, true), "estimate_normals: degree_fitting(4) gives order(4)'s normals bitwise");
+  check_printed(!same_points(by_order, by_default, true), "estimate_normals: degree_fitting(4) is not ignored (differs from the default order 2)");
   std::vector<PV> both = input;
   CGAL::wavejet_estimate_normals<Seq>(both, 18, WJP::order(4, pm.degree_fitting(4)));
-  check(same_points(by_order, both, true), "estimate_normals: order(4) with degree_fitting(4) is accepted");
+  check_printed(same_points(by_order, both, true), "estimate_normals: order(4) with degree_fitting(4) is accepted");
 
   // wavejet_estimate_curvatures, on a range of indices with a point map into a vector (the output
   // maps are indexed the same way).
@@ -121,11 +112,11 @@ static void test_degree_fitting(const std::vector<PV>& input)
     CGAL::wavejet_estimate_curvatures<Seq>(idx, 24, WJP::mean_curvature_map(CGAL::make_property_map(a)).order(3).point_map(by_index));
     CGAL::wavejet_estimate_curvatures<Seq>(idx, 24, WJP::mean_curvature_map(CGAL::make_property_map(b)).point_map(by_index).degree_fitting(3));
     CGAL::wavejet_estimate_curvatures<Seq>(idx, 24, WJP::mean_curvature_map(CGAL::make_property_map(c)).point_map(by_index));
-    check(a == b, "estimate_curvatures: degree_fitting(3) gives order(3)'s mean curvatures bitwise");
-    check(a != c, "estimate_curvatures: degree_fitting(3) is not ignored (differs from the default order 2)");
+    check_printed(a == b, "estimate_curvatures: degree_fitting(3) gives order(3)'s mean curvatures bitwise");
+    check_printed(a != c, "estimate_curvatures: degree_fitting(3) is not ignored (differs from the default order 2)");
     CGAL::wavejet_estimate_curvatures<Seq>(idx, 24, WJP::mean_curvature_map(CGAL::make_property_map(d)).order(3).point_map(by_index).degree_monge(2));
-    check(a == d, "estimate_curvatures: degree_monge(2) is accepted and changes nothing");
-    check(throws_naming([&] {
+    check_printed(a == d, "estimate_curvatures: degree_monge(2) is accepted and changes nothing");
+    check_printed(throws_naming([&] {
             CGAL::wavejet_estimate_curvatures<Seq>(idx, 24, WJP::mean_curvature_map(CGAL::make_property_map(d)).point_map(by_index).degree_monge(3));
           }, {"wavejet_estimate_curvatures", "degree_monge"}),
           "estimate_curvatures: degree_monge(3) throws, naming degree_monge");
@@ -136,36 +127,36 @@ static void test_degree_fitting(const std::vector<PV>& input)
   CGAL::wavejet_enhance_positions<Seq>(p_order, 30, 2., WJP::order(3, pm));
   CGAL::wavejet_enhance_positions<Seq>(p_degree, 30, 2., pm.degree_fitting(3));
   CGAL::wavejet_enhance_positions<Seq>(p_default, 30, 2., pm);
-  check(same_points(p_order, p_degree, false), "enhance_positions: degree_fitting(3) gives order(3)'s positions bitwise");
-  check(!same_points(p_order, p_default, false), "enhance_positions: degree_fitting(3) is not ignored (differs from the default order 4)");
+  check_printed(same_points(p_order, p_degree, false), "enhance_positions: degree_fitting(3) gives order(3)'s positions bitwise");
+  check_printed(!same_points(p_order, p_default, false), "enhance_positions: degree_fitting(3) is not ignored (differs from the default order 4)");
   std::vector<PV> n_order = input, n_degree = input, n_default = input;
   CGAL::wavejet_enhance_normals<Seq>(n_order, 40, 3., WJP::order(5, pm));
   CGAL::wavejet_enhance_normals<Seq>(n_degree, 40, 3., pm.degree_fitting(5));
   CGAL::wavejet_enhance_normals<Seq>(n_default, 40, 3., pm);
-  check(same_points(n_order, n_degree, true), "enhance_normals: degree_fitting(5) gives order(5)'s normals bitwise");
-  check(!same_points(n_order, n_default, true), "enhance_normals: degree_fitting(5) is not ignored (differs from the default order 4)");
+  check_printed(same_points(n_order, n_degree, true), "enhance_normals: degree_fitting(5) gives order(5)'s normals bitwise");
+  check_printed(!same_points(n_order, n_default, true), "enhance_normals: degree_fitting(5) is not ignored (differs from the default order 4)");
 
   // Conflicts and bad values: a clear message naming both parameters.
   std::vector<PV> scratch = input;
-  check(throws_naming([&] { CGAL::wavejet_estimate_normals<Seq>(scratch, 18, WJP::order(3, pm.degree_fitting(4))); },
+  check_printed(throws_naming([&] { CGAL::wavejet_estimate_normals<Seq>(scratch, 18, WJP::order(3, pm.degree_fitting(4))); },
                       {"wavejet_estimate_normals", "order(3)", "degree_fitting(4)"}),
         "estimate_normals: order(3) with degree_fitting(4) throws, naming both");
-  check(throws_naming([&] { CGAL::wavejet_enhance_positions<Seq>(scratch, 18, 2., WJP::order(2, pm.degree_fitting(4))); },
+  check_printed(throws_naming([&] { CGAL::wavejet_enhance_positions<Seq>(scratch, 18, 2., WJP::order(2, pm.degree_fitting(4))); },
                       {"wavejet_enhance_positions", "order(2)", "degree_fitting(4)"}),
         "enhance_positions: order(2) with degree_fitting(4) throws, naming both");
-  check(throws_naming([&] { CGAL::wavejet_enhance_normals<Seq>(scratch, 18, 2., pm.degree_fitting(0)); },
+  check_printed(throws_naming([&] { CGAL::wavejet_enhance_normals<Seq>(scratch, 18, 2., pm.degree_fitting(0)); },
                       {"wavejet_enhance_normals", "degree_fitting must be >= 1"}),
         "enhance_normals: degree_fitting(0) throws");
-  check(throws_naming([&] { CGAL::wavejet_estimate_normals<Seq>(scratch, 18, pm.degree_fitting(-2)); },
+  check_printed(throws_naming([&] { CGAL::wavejet_estimate_normals<Seq>(scratch, 18, pm.degree_fitting(-2)); },
                       {"degree_fitting must be >= 1"}),
         "estimate_normals: degree_fitting(-2) throws (no wrap-around to a huge order)");
-  check(throws_naming([&] { CGAL::wavejet_estimate_normals<Seq>(scratch, 18, pm.degree_monge(2)); },
+  check_printed(throws_naming([&] { CGAL::wavejet_estimate_normals<Seq>(scratch, 18, pm.degree_monge(2)); },
                       {"wavejet_estimate_normals", "degree_monge has no meaning"}),
         "estimate_normals: degree_monge throws (no meaning there)");
-  check(throws_naming([&] { CGAL::wavejet_enhance_positions<Seq>(scratch, 18, 2., pm.degree_monge(2)); },
+  check_printed(throws_naming([&] { CGAL::wavejet_enhance_positions<Seq>(scratch, 18, 2., pm.degree_monge(2)); },
                       {"wavejet_enhance_positions", "degree_monge has no meaning"}),
         "enhance_positions: degree_monge throws (no meaning there)");
-  check(same_points(scratch, input, true), "rejected calls leave the points untouched");
+  check_printed(same_points(scratch, input, true), "rejected calls leave the points untouched");
 }
 
 static void test_other_cgal_names(const std::vector<PV>& input)
@@ -176,7 +167,7 @@ static void test_other_cgal_names(const std::vector<PV>& input)
   std::vector<PV> knn = input, radius = input;
   CGAL::wavejet_estimate_normals<Seq>(knn, 18, pm);
   const auto report = CGAL::wavejet_estimate_normals<Seq>(radius, 0, pm.neighbor_radius(0.08));
-  check(!same_points(knn, radius, true) && report.number_of_fitted_points > input.size() / 2,
+  check_printed(!same_points(knn, radius, true) && report.number_of_fitted_points > input.size() / 2,
         "neighbor_radius is honoured (radius neighborhoods differ from 18-NN)");
 
   // point_map / normal_map into a user struct: same normals as on pairs.
@@ -186,12 +177,12 @@ static void test_other_cgal_names(const std::vector<PV>& input)
                                                       .normal_map(Sample_normal_map()));
   bool same = true;
   for(std::size_t i = 0; i < samples.size(); ++i) same = same && samples[i].normal == knn[i].second;
-  check(same, "point_map and normal_map on a user struct are honoured (same normals as on pairs)");
+  check_printed(same, "point_map and normal_map on a user struct are honoured (same normals as on pairs)");
 
   // geom_traits: an explicit kernel gives the same result.
   std::vector<PV> traits = input;
   CGAL::wavejet_estimate_normals<Seq>(traits, 18, pm.geom_traits(Kernel()));
-  check(same_points(knn, traits, true), "geom_traits(Kernel()) is honoured (same result)");
+  check_printed(same_points(knn, traits, true), "geom_traits(Kernel()) is honoured (same result)");
 
   // callback: called with increasing progress; returning false interrupts and nothing is written.
   std::vector<PV> called = input;
@@ -204,25 +195,31 @@ static void test_other_cgal_names(const std::vector<PV>& input)
     last = t;
     return true;
   })));
-  check(calls > 0 && increasing, "callback is called with non-decreasing progress (" + std::to_string(calls) + " calls)");
+  check_printed(calls > 0 && increasing, "callback is called with non-decreasing progress (" + std::to_string(calls) + " calls)");
   std::vector<PV> stopped = input;
   const auto interrupted = CGAL::wavejet_enhance_positions<Seq>(stopped, 18, 2.,
     pm.callback(std::function<bool(double)>([](double t) { return t < 0.5; })));
-  check(interrupted.interrupted && same_points(stopped, input, true), "callback returning false interrupts; nothing is written");
+  check_printed(interrupted.interrupted && same_points(stopped, input, true), "callback returning false interrupts; nothing is written");
+}
+
+/// data/kitten.xyz with its normals, read once.
+static const std::vector<PV>& kitten()
+{
+  static const std::vector<PV> input = [] {
+    std::vector<PV> v;
+    if(!CGAL::IO::read_points("data/kitten.xyz", std::back_inserter(v),
+                              CGAL::parameters::point_map(Point_map()).normal_map(Normal_map())) ||
+       v.size() < 100)
+      throw std::runtime_error("cannot read data/kitten.xyz");
+    return v;
+  }();
+  return input;
 }
 
 int main(int argc, char** argv)
 {
-  const char* file = argc > 1 ? argv[1] : "data/kitten.xyz";
-  std::vector<PV> input;
-  if(!CGAL::IO::read_points(file, std::back_inserter(input), CGAL::parameters::point_map(Point_map()).normal_map(Normal_map())) ||
-     input.size() < 100)
-  {
-    std::cerr << "cannot read " << file << std::endl;
-    return EXIT_FAILURE;
-  }
-  test_degree_fitting(input);
-  test_other_cgal_names(input);
-  std::cout << checks - failures << " passed, " << failures << " failed" << std::endl;
-  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+  return wavejets_test::run_cases(argc, argv, {
+    Case{"degree_fitting_and_degree_monge", [] { test_degree_fitting(kitten()); }},
+    Case{"radius_maps_traits_callback", [] { test_other_cgal_names(kitten()); }},
+  });
 }

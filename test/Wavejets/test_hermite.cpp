@@ -14,7 +14,8 @@
 #include <CGAL/wavejet_estimate_curvatures.h>
 #include <CGAL/wavejet_estimate_normals.h>
 
-#include "../../benchmark/Wavejets/analytic_surfaces.h"
+#include "analytic_surfaces.h"
+#include "wavejets_test_support.h"
 
 #include <cmath>
 #include <cstring>
@@ -30,17 +31,8 @@ namespace WB = wavejets_bench;
 namespace WP = CGAL::Wavejets::parameters;
 namespace WI = CGAL::Wavejets::internal;
 
-static int failures = 0;
-#define CHECK(cond, what)                                                                          \
-  do {                                                                                             \
-    if(!(cond)) { std::cerr << "FAILED: " << what << " (" #cond ")\n"; ++failures; }               \
-  } while(0)
-
-template <class T>
-static bool bitwise_equal(const std::vector<T>& a, const std::vector<T>& b)
-{
-  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
-}
+using wavejets_test::Case;
+using wavejets_test::bitwise_equal;
 
 // The analytic gradient of the basis against central differences of the basis values, K = 7.
 static void test_basis_gradient()
@@ -401,20 +393,15 @@ static void test_parameters()
   }
 }
 
-int main()
+int main(int argc, char** argv)
 {
-  test_basis_gradient();
-  test_exact_recovery();
-  test_slopes_are_used();
-  test_analytic_surfaces();
-  test_outliers();
-  test_sequential_equals_parallel();
-  test_parameters();
-  if(failures)
-  {
-    std::cerr << failures << " failure(s)\n";
-    return 1;
-  }
-  std::cout << "test_hermite: all passed\n";
-  return 0;
+  return wavejets_test::run_cases(argc, argv, {
+    Case{"fit.basis_gradient", test_basis_gradient},
+    Case{"fit.exact_recovery_of_polynomials", test_exact_recovery},
+    Case{"fit.slopes_are_used", test_slopes_are_used},
+    Case{"functions.analytic_sphere_and_torus", test_analytic_surfaces},
+    Case{"functions.outliers", test_outliers},
+    Case{"functions.sequential_equals_parallel", test_sequential_equals_parallel},
+    Case{"functions.parameter_checks", test_parameters},
+  });
 }

@@ -25,9 +25,12 @@
 #include <cstdlib>
 #include <iostream>
 #include <map>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "wavejets_test_support.h"
 
 typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
 typedef K::Point_3 Point;
@@ -39,11 +42,7 @@ typedef std::pair<Point, Vector> Pwn;
 namespace WP = CGAL::Wavejets::parameters;
 namespace PMP = CGAL::Polygon_mesh_processing;
 
-static int failures = 0;
-#define CHECK(cond, what)                                                          \
-  do {                                                                             \
-    if(!(cond)) { std::cerr << "FAIL: " << what << " (" #cond ")" << std::endl; ++failures; } \
-  } while(0)
+using wavejets_test::Case;
 
 static const unsigned int k = 24;
 
@@ -261,31 +260,42 @@ static void check_polyhedron(const std::string& path, const Mesh& mesh)
   CHECK(P.is_valid(), "Polyhedron_3: no longer valid");
 }
 
+// Sequential and parallel runs on the mesh: bitwise identical. (Only this function under
+// Parallel_tag: the others share its driver, and each instantiation costs compile memory.)
+static void check_sequential_equals_parallel(const Mesh& mesh)
+{
+  Mesh a = mesh, b = mesh;
+  auto va = vertices(a);
+  auto vb = vertices(b);
+  CGAL::wavejet_enhance_positions<CGAL::Sequential_tag>(va, k, 3.0, WP::order(4).point_map(a.points()));
+  CGAL::wavejet_enhance_positions<CGAL::Parallel_if_available_tag>(vb, k, 3.0, WP::order(4).point_map(b.points()));
+  std::size_t same = 0;
+  for(Vertex vi : a.vertices()) same += (a.point(vi) == b.point(vi));
+  CHECK(same == a.number_of_vertices(), "Sequential_tag and Parallel_tag differ on a mesh");
+}
+
+static const std::string fandisk_path = "data/fandisk.off";
+
+/// data/fandisk.off, read once.
+static const Mesh& fandisk()
+{
+  static const Mesh mesh = [] {
+    Mesh m;
+    if(!CGAL::IO::read_OFF(fandisk_path, m) || m.number_of_faces() == 0)
+      throw std::runtime_error("cannot read the mesh " + fandisk_path);
+    std::cout << fandisk_path << ": " << m.number_of_vertices() << " vertices, " << m.number_of_faces() << " faces"
+              << std::endl;
+    return m;
+  }();
+  return mesh;
+}
+
 int main(int argc, char** argv)
 {
-  const std::string path = argc > 1 ? argv[1] : "data/fandisk.off";
-  Mesh mesh;
-  if(!CGAL::IO::read_OFF(path, mesh) || mesh.number_of_faces() == 0) {
-    std::cerr << "FAIL: cannot read the mesh " << path << std::endl;
-    return EXIT_FAILURE;
-  }
-  std::cout << path << ": " << mesh.number_of_vertices() << " vertices, " << mesh.number_of_faces() << " faces" << std::endl;
-  check_surface_mesh<CGAL::Sequential_tag>(mesh);
-  // Sequential and parallel runs on the mesh: bitwise identical. (Only this function under
-  // Parallel_tag: the others share its driver, and each instantiation costs compile memory.)
-  {
-    Mesh a = mesh, b = mesh;
-    auto va = vertices(a);
-    auto vb = vertices(b);
-    CGAL::wavejet_enhance_positions<CGAL::Sequential_tag>(va, k, 3.0, WP::order(4).point_map(a.points()));
-    CGAL::wavejet_enhance_positions<CGAL::Parallel_if_available_tag>(vb, k, 3.0, WP::order(4).point_map(b.points()));
-    std::size_t same = 0;
-    for(Vertex vi : a.vertices()) same += (a.point(vi) == b.point(vi));
-    CHECK(same == a.number_of_vertices(), "Sequential_tag and Parallel_tag differ on a mesh");
-  }
-  check_removed_vertices(mesh);
-  check_polyhedron(path, mesh);
-  if(failures) { std::cerr << failures << " failure(s)" << std::endl; return EXIT_FAILURE; }
-  std::cout << "test_meshes: all checks passed" << std::endl;
-  return EXIT_SUCCESS;
+  return wavejets_test::run_cases(argc, argv, {
+    Case{"surface_mesh.same_as_vector", [] { check_surface_mesh<CGAL::Sequential_tag>(fandisk()); }},
+    Case{"surface_mesh.sequential_equals_parallel", [] { check_sequential_equals_parallel(fandisk()); }},
+    Case{"surface_mesh.removed_vertices", [] { check_removed_vertices(fandisk()); }},
+    Case{"polyhedron.same_as_surface_mesh", [] { check_polyhedron(fandisk_path, fandisk()); }},
+  });
 }

@@ -4,7 +4,7 @@
 //
 // Every check is an explicit `if` that accumulates failures (never `assert`); each group prints
 // one line with its measured numbers. Run from test/Wavejets (reads data/kitten.xyz and
-// data/fandisk.off, or the files given as argv[1], argv[2]).
+// data/fandisk.off); the argument names a case or a group of cases (--list).
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Point_set_3.h>
@@ -38,60 +38,22 @@
 #include <iostream>
 #include <limits>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
-typedef CGAL::Epick Kernel;
-typedef Kernel::Point_3 Point;
-typedef Kernel::Vector_3 Vector;
-typedef std::pair<Point, Vector> PV;
-typedef std::vector<PV> PV_range;
-typedef CGAL::First_of_pair_property_map<PV> Point_map;
-typedef CGAL::Second_of_pair_property_map<PV> Normal_map;
-typedef CGAL::Sequential_tag Seq;
-#ifdef CGAL_LINKED_WITH_TBB
-typedef CGAL::Parallel_tag Par;
-#else
-typedef CGAL::Sequential_tag Par;
-#endif
+#include "analytic_surfaces.h"
+#include "wavejets_test_support.h"
+#include "wavejets_test_types.h"
+
+using namespace wavejets_test;
+using namespace wavejets_test::types;
 namespace WJP = CGAL::Wavejets::parameters;
 
 static const double PI = 3.14159265358979323846;
-static int failures = 0;
 
-static void report_group(const std::string& name, bool ok, const std::string& numbers)
-{
-  std::cout << (ok ? "[ OK ] " : "[FAIL] ") << name << ": " << numbers << std::endl;
-  if(!ok) ++failures;
-}
-static std::string fmt(double x)
-{
-  char b[64];
-  std::snprintf(b, sizeof b, "%.6g", x);
-  return b;
-}
-
-// Writable/readable property map keyed by the elements of a PV_range (by address), storing T in
-// a std::vector: used for curvature outputs and fitted_map on std::vector inputs.
-template <class T>
-struct Slot_map
-{
-  typedef PV key_type;
-  typedef T value_type;
-  typedef T& reference;
-  typedef boost::read_write_property_map_tag category;
-  const PV* base;
-  std::vector<T>* data;
-  friend void put(const Slot_map& m, const PV& k, const T& v) { (*m.data)[std::size_t(&k - m.base)] = v; }
-  friend T& get(const Slot_map& m, const PV& k) { return (*m.data)[std::size_t(&k - m.base)]; }
-};
-template <class T>
-Slot_map<T> slot_map(const PV_range& r, std::vector<T>& d)
-{
-  d.resize(r.size());
-  return Slot_map<T>{r.data(), &d};
-}
+static std::string fmt(double x) { return significant_digits(x, 6); }
 
 // Angles by atan2(|a x b|, a.b): acos of a dot product cannot resolve angles below ~1.5e-8.
 static double angle(const Vector& a, const Vector& b) // oriented angle in [0, pi]
@@ -102,27 +64,6 @@ static double unoriented_angle(const Vector& a, const Vector& b) // in [0, pi/2]
 {
   return std::atan2(std::sqrt(CGAL::cross_product(a, b).squared_length()), std::abs(a * b));
 }
-static bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof(double)) == 0; }
-static bool same_bits(const Point& a, const Point& b)
-{ return same_bits(a.x(), b.x()) && same_bits(a.y(), b.y()) && same_bits(a.z(), b.z()); }
-static bool same_bits(const Vector& a, const Vector& b)
-{ return same_bits(a.x(), b.x()) && same_bits(a.y(), b.y()) && same_bits(a.z(), b.z()); }
-static bool same_bits(const PV_range& a, const PV_range& b)
-{
-  if(a.size() != b.size()) return false;
-  for(std::size_t i = 0; i < a.size(); ++i)
-    if(!same_bits(a[i].first, b[i].first) || !same_bits(a[i].second, b[i].second)) return false;
-  return true;
-}
-template <class T>
-static bool same_bits(const std::vector<T>& a, const std::vector<T>& b)
-{
-  if(a.size() != b.size()) return false;
-  for(std::size_t i = 0; i < a.size(); ++i)
-    if(!same_bits(a[i], b[i])) return false;
-  return true;
-}
-
 // Fibonacci sampling of the unit sphere: point i of N (z decreasing from the north pole).
 static Vector fibonacci(std::size_t i, std::size_t N)
 {
@@ -131,16 +72,6 @@ static Vector fibonacci(std::size_t i, std::size_t N)
   const double phi = double(i) * PI * (3. - std::sqrt(5.));
   return Vector(r * std::cos(phi), r * std::sin(phi), z);
 }
-
-// Portable deterministic standard normal (mt19937_64 is specified by the standard; the
-// distributions are not, so Box-Muller is written out).
-struct Gauss
-{
-  std::mt19937_64 gen;
-  explicit Gauss(std::uint64_t seed) : gen(seed) {}
-  double uniform() { return (double(gen() >> 11) + 0.5) * (1. / 9007199254740992.); }
-  double operator()() { return std::sqrt(-2. * std::log(uniform())) * std::cos(2. * PI * uniform()); }
-};
 
 // k nearest neighbors of every point, excluding itself, ties by index: the package's definition
 // (neighbor_query.h). Brute force, O(N^2): fine for the few thousand points it is used on.
@@ -260,10 +191,10 @@ static void test_sphere_growth()
   const double spread = (rmax - rmin) / d_exact;
   const bool ok = n > 500 && all_moved && rel < 1e-7 && spread < 1e-7 && max_lateral < 1e-7 * d_exact &&
                   rep.number_of_unfitted_points == 0 && rep.number_of_clamped_points == 0;
-  report_group("1. sphere growth (K=8, Rf=s=0.03, gain 100, no clamp)", ok,
-               std::to_string(n) + " interior points of " + std::to_string(M) + "; analytic d = " + fmt(d_exact) +
-                 ", mean d = " + fmt(mean_d) + ", rel err = " + fmt(rel) + ", spread/d = " + fmt(spread) +
-                 ", lateral = " + fmt(max_lateral));
+  report("1. sphere growth (K=8, Rf=s=0.03, gain 100, no clamp)", ok,
+         std::to_string(n) + " interior points of " + std::to_string(M) + "; analytic d = " + fmt(d_exact) +
+           ", mean d = " + fmt(mean_d) + ", rel err = " + fmt(rel) + ", spread/d = " + fmt(spread) +
+           ", lateral = " + fmt(max_lateral));
 
   // Same cap, normals. (i) The chain of issue 3 verbatim,
   //   CGAL::Wavejets::parameters::order(6).neighbor_radius(0.03).point_map(pm).normal_map(nm),
@@ -294,14 +225,14 @@ static void test_sphere_growth()
                                                     (nv[i].second + ns[i].second).squared_length()) <= 1e-28;
     oriented = oriented && ns[i].second.z() > 0;
   }
-  report_group("1b. sphere normals, issue 3 chain verbatim: order(6).neighbor_radius(0.03).point_map(pm).normal_map(nm)",
-               max_err_v < 1e-9 && rv.number_of_fitted_points > 0 && rv.number_of_points == M,
-               "max unoriented angle to radial = " + fmt(max_err_v) + " rad, " + std::to_string(rv.number_of_fitted_points) +
-                 " of " + std::to_string(M) + " points fitted");
-  report_group("1c. sphere normals, order(6).orient_with_input_normals(true).neighbor_radius(0.03).point_map.normal_map",
-               max_err < 1e-9 && same_up_to_sign && oriented,
-               "max angle to radial = " + fmt(max_err) + " rad; equal to 1b up to the sign (1e-14): " +
-                 (same_up_to_sign ? "yes" : "no") + ", all oriented to +z: " + (oriented ? "yes" : "no"));
+  report("1b. sphere normals, issue 3 chain verbatim: order(6).neighbor_radius(0.03).point_map(pm).normal_map(nm)",
+         max_err_v < 1e-9 && rv.number_of_fitted_points > 0 && rv.number_of_points == M,
+         "max unoriented angle to radial = " + fmt(max_err_v) + " rad, " + std::to_string(rv.number_of_fitted_points) +
+           " of " + std::to_string(M) + " points fitted");
+  report("1c. sphere normals, order(6).orient_with_input_normals(true).neighbor_radius(0.03).point_map.normal_map",
+         max_err < 1e-9 && same_up_to_sign && oriented,
+         "max angle to radial = " + fmt(max_err) + " rad; equal to 1b up to the sign (1e-14): " +
+           (same_up_to_sign ? "yes" : "no") + ", all oriented to +z: " + (oriented ? "yes" : "no"));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -339,9 +270,9 @@ static void test_position_gains()
     // Mean: unbiased up to the sphere's quartic term r^4/8 (r <= 0.09: 8e-6) and the sampling
     // error of the mean sigma/sqrt(N) = 1.4e-5; bound sigma/20 = 1e-4.
     const bool ok = sd1 < 0.71 * sd0 && std::abs(m1 - 1.) < sigma / 20;
-    report_group("2a. positions gain 1 denoises (noisy sphere, sigma 0.2%, k=40, K=2)", ok,
-                 "radius std " + fmt(sd0) + " -> " + fmt(sd1) + " (ratio " + fmt(sd1 / sd0) + "), mean " + fmt(m0) +
-                   " -> " + fmt(m1));
+    report("2a. positions gain 1 denoises (noisy sphere, sigma 0.2%, k=40, K=2)", ok,
+           "radius std " + fmt(sd0) + " -> " + fmt(sd1) + " (ratio " + fmt(sd1 / sd0) + "), mean " + fmt(m0) +
+             " -> " + fmt(m1));
   }
   // 2b. sinusoid z = A sin(w x) on a grid: amplitude after the filter, for gains 0, 1, 2, -10.
   {
@@ -389,7 +320,7 @@ static void test_position_gains()
       if(gain == -10.) ok = ok && ratio < 0.;               // inverted
     }
     // (gain 1: the 1e-3 absolute term is the K = 4 truncation of the projection, ~ (w s)^6/2304 = 2e-4.)
-    report_group("2b. positions gain 0 flattens, 2 amplifies, -10 inverts (sinusoid, Rf=s=0.06, K=4)", ok, numbers);
+    report("2b. positions gain 0 flattens, 2 amplifies, -10 inverts (sinusoid, Rf=s=0.06, K=4)", ok, numbers);
   }
 }
 
@@ -418,8 +349,8 @@ static void test_normal_gains()
     double maxd = 0.;
     for(std::size_t i = 0; i < a.size(); ++i)
       maxd = (std::max)(maxd, std::sqrt((a[i].second - b[i].second).squared_length()));
-    report_group("2c. normals gain 1 == wavejet_estimate_normals (oriented, same tangent-plane search)",
-                 maxd <= 1e-15, "max |n_a - n_b| = " + fmt(maxd));
+    report("2c. normals gain 1 == wavejet_estimate_normals (oriented, same tangent-plane search)",
+           maxd <= 1e-15, "max |n_a - n_b| = " + fmt(maxd));
   }
   // 2d. gains 0, 1, 2 on the sinusoid: mean angle to the flat-plane normal +z (interior points).
   {
@@ -447,9 +378,9 @@ static void test_normal_gains()
     // gain 1 is the fitted surface's own normal: a noise-free sinusoid is reproduced to the K = 4
     // truncation, (w Rf)^4/... of the slope: 1% bound on the mean tilt.
     const bool ok = t[0] < t[1] && t[1] < t[2] && std::abs(t[1] - t_exact) < 0.01 * t_exact;
-    report_group("2d. normals gain 0 blurs, 2 exaggerates (sinusoid)", ok,
-                 "mean tilt (rad): exact " + fmt(t_exact) + ", gain 0: " + fmt(t[0]) + ", gain 1: " + fmt(t[1]) +
-                   ", gain 2: " + fmt(t[2]));
+    report("2d. normals gain 0 blurs, 2 exaggerates (sinusoid)", ok,
+           "mean tilt (rad): exact " + fmt(t_exact) + ", gain 0: " + fmt(t[0]) + ", gain 1: " + fmt(t[1]) +
+             ", gain 2: " + fmt(t[2]));
   }
   // 2e. complex gain twists: z = c (x^3 + x y^2) = c r^3 cos(theta) at the origin, whose only
   // Wavejet coefficients are f_{3,+-1} = c/2 in the frame (x, y, z) (tangent plane z = 0). With a
@@ -487,8 +418,8 @@ static void test_normal_gains()
       max_err = (std::max)(max_err, angle(got, expected));
       numbers += "arg(g-1) " + fmt(std::arg(gm1)) + " tilt dir " + fmt(std::atan2(got.y(), got.x())) + "; ";
     }
-    report_group("2e. complex gain twists (z = 5(x^3 + x y^2), Rf=0.1, s=0.08)", max_err < 1e-9,
-                 numbers + "max angle to formula = " + fmt(max_err) + " rad");
+    report("2e. complex gain twists (z = 5(x^3 + x y^2), Rf=0.1, s=0.08)", max_err < 1e-9,
+           numbers + "max angle to formula = " + fmt(max_err) + " rad");
   }
 }
 
@@ -511,8 +442,8 @@ static void compare_with_jets(const std::string& name, const PV_range& input, do
   CGAL::jet_estimate_normals<CGAL::Parallel_if_available_tag>(
     j, 18, CGAL::parameters::point_map(pm).normal_map(nm).degree_fitting(2));
   const double dev = mean_unoriented_deviation(w, j) * 180. / PI;
-  report_group("3. normals vs jet_estimate_normals on " + name + " (k=18, order 2)", dev < bound_deg,
-               "mean unoriented deviation = " + fmt(dev) + " deg (bound " + fmt(bound_deg) + ")");
+  report("3. normals vs jet_estimate_normals on " + name + " (k=18, order 2)", dev < bound_deg,
+         "mean unoriented deviation = " + fmt(dev) + " deg (bound " + fmt(bound_deg) + ")");
 }
 
 static void accuracy_vs_jets(const std::string& name, const PV_range& truth, unsigned int k, unsigned int degree,
@@ -525,10 +456,10 @@ static void accuracy_vs_jets(const std::string& name, const PV_range& truth, uns
   CGAL::jet_estimate_normals<CGAL::Parallel_if_available_tag>(
     j, k, CGAL::parameters::point_map(pm).normal_map(nm).degree_fitting(degree));
   const double ew = mean_unoriented_deviation(w, truth), ej = mean_unoriented_deviation(j, truth);
-  report_group("3. normal accuracy on " + name + " (k=" + std::to_string(k) + ", order " + std::to_string(degree) + ")",
-               ew <= ej * factor,
-               "mean angle error: Wavejet " + fmt(ew) + " rad, CGAL jet " + fmt(ej) + " rad (ratio " + fmt(ew / ej) +
-                 ", bound " + fmt(factor) + ")");
+  report("3. normal accuracy on " + name + " (k=" + std::to_string(k) + ", order " + std::to_string(degree) + ")",
+         ew <= ej * factor,
+         "mean angle error: Wavejet " + fmt(ew) + " rad, CGAL jet " + fmt(ej) + " rad (ratio " + fmt(ew / ej) +
+           ", bound " + fmt(factor) + ")");
 }
 
 static PV_range make_sphere(std::size_t N, double R)
@@ -541,25 +472,8 @@ static PV_range make_sphere(std::size_t N, double R)
   }
   return pts;
 }
-// Torus (R, r) on a golden-ratio lattice in (u, v); outward normals. Also returns H and K_G.
-static PV_range make_torus(std::size_t N, double R, double r, std::vector<double>& H, std::vector<double>& KG)
-{
-  PV_range pts;
-  const double phi = (std::sqrt(5.) - 1.) / 2.;
-  for(std::size_t i = 0; i < N; ++i)
-  {
-    const double u = 2. * PI * (double(i) + 0.5) / double(N);
-    const double v = 2. * PI * std::fmod(double(i) * phi, 1.);
-    const double cu = std::cos(u), su = std::sin(u), cv = std::cos(v), sv = std::sin(v);
-    pts.emplace_back(Point((R + r * cv) * cu, (R + r * cv) * su, r * sv), Vector(cv * cu, cv * su, sv));
-    // principal curvatures w.r.t. the outward normal: -1/r (meridian) and -cos v/(R + r cos v)
-    H.push_back(-(R + 2. * r * cv) / (2. * r * (R + r * cv)));
-    KG.push_back(cv / (r * (R + r * cv)));
-  }
-  return pts;
-}
-
-// The same torus with its principal curvatures k1 >= k2 (outward normal) and directions:
+// Torus (R, r) on a golden-ratio lattice in (u, v); outward normals, and (if `t`) its exact
+// curvatures and principal directions (Parametric_torus, support/analytic_surfaces.h):
 // k1 = -cos v/(R + r cos v) along the parallel (d/du), k2 = -1/r along the meridian (d/dv); with
 // R > 2r, k1 >= -1/(R + r) > -1/r = k2 everywhere (no umbilic: gap k1 - k2 >= 1/r - 1/(R + r)).
 struct Torus_truth
@@ -567,19 +481,25 @@ struct Torus_truth
   std::vector<double> H, KG, k1, k2;
   std::vector<Vector> d1, d2;
 };
-static PV_range make_torus(std::size_t N, double R, double r, Torus_truth& t)
+static PV_range make_torus(std::size_t N, double R, double r, Torus_truth* t = nullptr)
 {
-  PV_range pts = make_torus(N, R, r, t.H, t.KG);
+  const wavejets_bench::Parametric_torus torus{R, r};
+  PV_range pts;
   const double phi = (std::sqrt(5.) - 1.) / 2.;
   for(std::size_t i = 0; i < N; ++i)
   {
     const double u = 2. * PI * (double(i) + 0.5) / double(N);
     const double v = 2. * PI * std::fmod(double(i) * phi, 1.);
-    const double cu = std::cos(u), su = std::sin(u), cv = std::cos(v), sv = std::sin(v);
-    t.k1.push_back(-cv / (R + r * cv));
-    t.k2.push_back(-1. / r);
-    t.d1.push_back(Vector(-su, cu, 0.));
-    t.d2.push_back(Vector(-sv * cu, -sv * su, cv));
+    const Eigen::Vector3d p = torus.point(u, v), n = torus.outward_normal(u, v);
+    pts.emplace_back(Point(p.x(), p.y(), p.z()), Vector(n.x(), n.y(), n.z()));
+    if(!t) continue;
+    t->H.push_back(torus.mean_curvature(v));
+    t->KG.push_back(torus.gaussian_curvature(v));
+    t->k1.push_back(torus.parallel_curvature(v));
+    t->k2.push_back(torus.meridian_curvature());
+    const Eigen::Vector3d d1 = torus.parallel_direction(u), d2 = torus.meridian_direction(u, v);
+    t->d1.push_back(Vector(d1.x(), d1.y(), d1.z()));
+    t->d2.push_back(Vector(d2.x(), d2.y(), d2.z()));
   }
   return pts;
 }
@@ -606,8 +526,7 @@ static void test_normals_vs_jets(const PV_range& kitten, const PV_range& fandisk
   // d = 3: sphere 1.0004, torus 0.9988). There "at least as accurate" cannot be guaranteed; the
   // bound asserted is ew <= 1.01 ej (the two are equal to that precision).
   const PV_range sphere = make_sphere(10000, 1.);
-  std::vector<double> H, KG;
-  const PV_range torus = make_torus(20000, 1., 0.4, H, KG);
+  const PV_range torus = make_torus(20000, 1., 0.4);
   for(unsigned int d = 2; d <= 4; ++d)
   {
     const unsigned int kk = d == 2 ? 18 : 40;
@@ -620,6 +539,18 @@ static void test_normals_vs_jets(const PV_range& kitten, const PV_range& fandisk
 // ---------------------------------------------------------------------------------------------
 // 4. Curvatures: analytic surfaces, and CGAL's Monge_via_jet_fitting on the same neighborhoods.
 // ---------------------------------------------------------------------------------------------
+// Every curvature output of wavejet_estimate_curvatures at order 4 (Parallel_if_available_tag).
+static void estimate_all_curvatures(PV_range& pts, std::size_t k, std::vector<double>& H, std::vector<double>& KG,
+                                    std::vector<double>& k1, std::vector<double>& k2, std::vector<Vector>& d1,
+                                    std::vector<Vector>& d2)
+{
+  CGAL::wavejet_estimate_curvatures<CGAL::Parallel_if_available_tag>(pts, k,
+    WJP::order(4).mean_curvature_map(slot_map(pts, H)).gaussian_curvature_map(slot_map(pts, KG))
+      .maximal_principal_curvature_map(slot_map(pts, k1)).minimal_principal_curvature_map(slot_map(pts, k2))
+      .maximal_principal_direction_map(slot_map(pts, d1)).minimal_principal_direction_map(slot_map(pts, d2))
+      .point_map(Point_map()).normal_map(Normal_map()));
+}
+
 static void test_curvatures(const PV_range& kitten)
 {
   Point_map pm;
@@ -640,11 +571,7 @@ static void test_curvatures(const PV_range& kitten)
     PV_range pts = make_sphere(10000, R);
     std::vector<double> Hm, Km, k1, k2;
     std::vector<Vector> d1, d2;
-    CGAL::wavejet_estimate_curvatures<CGAL::Parallel_if_available_tag>(pts, k,
-      WJP::order(4).mean_curvature_map(slot_map(pts, Hm)).gaussian_curvature_map(slot_map(pts, Km))
-        .maximal_principal_curvature_map(slot_map(pts, k1)).minimal_principal_curvature_map(slot_map(pts, k2))
-        .maximal_principal_direction_map(slot_map(pts, d1)).minimal_principal_direction_map(slot_map(pts, d2))
-        .point_map(pm).normal_map(nm));
+    estimate_all_curvatures(pts, k, Hm, Km, k1, k2, d1, d2);
     const double rho = max_knn_radius(pts, k, 100);
     double eH = 0., eK = 0., ek = 0., eorth = 0., etan = 0.;
     for(std::size_t i = 0; i < pts.size(); ++i)
@@ -658,12 +585,12 @@ static void test_curvatures(const PV_range& kitten)
       etan = (std::max)({etan, std::abs(d1[i] * n), std::abs(d2[i] * n)});
     }
     const double bH = std::pow(rho / R, 4) / R, bK = 2. * std::pow(rho / R, 4) / (R * R), bt = std::pow(rho / R, 5) / 16.;
-    report_group("4a. curvatures on sphere R=2 (k=40, K=4): H, K_G, k1, k2, directions", eH < bH && eK < bK && ek < bH &&
-                   eorth < 1e-12 && etan < bt,
-                 "max |H + 1/R| = " + fmt(eH) + " (bound " + fmt(bH) + "), max |K_G - 1/R^2| = " + fmt(eK) +
-                   " (bound " + fmt(bK) + "), max |k_i + 1/R| = " + fmt(ek) + " (bound " + fmt(bH) +
-                   "), directions: orthonormality " + fmt(eorth) + " (bound 1e-12), max |d_i . n| = " + fmt(etan) +
-                   " (bound " + fmt(bt) + ")");
+    report("4a. curvatures on sphere R=2 (k=40, K=4): H, K_G, k1, k2, directions", eH < bH && eK < bK && ek < bH &&
+             eorth < 1e-12 && etan < bt,
+           "max |H + 1/R| = " + fmt(eH) + " (bound " + fmt(bH) + "), max |K_G - 1/R^2| = " + fmt(eK) +
+             " (bound " + fmt(bK) + "), max |k_i + 1/R| = " + fmt(ek) + " (bound " + fmt(bH) +
+             "), directions: orthonormality " + fmt(eorth) + " (bound 1e-12), max |d_i . n| = " + fmt(etan) +
+             " (bound " + fmt(bt) + ")");
   }
   // 4b. Torus R = 1, r = 0.4 (outward normals, known H, K_G, k1, k2 and directions). Its graph
   // over the tangent plane is not symmetric: the first term a K = 4 fit neglects is of degree 5,
@@ -675,14 +602,10 @@ static void test_curvatures(const PV_range& kitten)
   {
     const double R = 1., r = 0.4;
     Torus_truth tt;
-    PV_range pts = make_torus(20000, R, r, tt);
+    PV_range pts = make_torus(20000, R, r, &tt);
     std::vector<double> Hm, Km, k1, k2;
     std::vector<Vector> d1, d2;
-    CGAL::wavejet_estimate_curvatures<CGAL::Parallel_if_available_tag>(pts, k,
-      WJP::order(4).mean_curvature_map(slot_map(pts, Hm)).gaussian_curvature_map(slot_map(pts, Km))
-        .maximal_principal_curvature_map(slot_map(pts, k1)).minimal_principal_curvature_map(slot_map(pts, k2))
-        .maximal_principal_direction_map(slot_map(pts, d1)).minimal_principal_direction_map(slot_map(pts, d2))
-        .point_map(pm).normal_map(nm));
+    estimate_all_curvatures(pts, k, Hm, Km, k1, k2, d1, d2);
     const double rho = max_knn_radius(pts, k, 100);
     const double bH = std::pow(rho / r, 3) / r, bK = std::pow(rho / r, 3) * (1. / r + 1. / (R - r)) / r;
     double eH = 0., eK = 0., ek1 = 0., ek2 = 0., edir = 0., edir_ratio = 0.;
@@ -696,12 +619,12 @@ static void test_curvatures(const PV_range& kitten)
       edir = (std::max)(edir, a);
       edir_ratio = (std::max)(edir_ratio, a / (bH / (tt.k1[i] - tt.k2[i])));
     }
-    report_group("4b. curvatures on torus R=1 r=0.4 (k=40, K=4): H, K_G, k1, k2, directions",
-                 eH < bH && eK < bK && ek1 < bH && ek2 < bH && edir_ratio < 1.,
-                 "rho = " + fmt(rho) + ", max |dH| = " + fmt(eH) + " (bound " + fmt(bH) + "), max |dK_G| = " + fmt(eK) +
-                   " (bound " + fmt(bK) + "), max |dk1| = " + fmt(ek1) + ", max |dk2| = " + fmt(ek2) + " (bound " +
-                   fmt(bH) + "), max sin(direction error) = " + fmt(edir) + " (worst ratio to its bound " +
-                   fmt(edir_ratio) + ")");
+    report("4b. curvatures on torus R=1 r=0.4 (k=40, K=4): H, K_G, k1, k2, directions",
+           eH < bH && eK < bK && ek1 < bH && ek2 < bH && edir_ratio < 1.,
+           "rho = " + fmt(rho) + ", max |dH| = " + fmt(eH) + " (bound " + fmt(bH) + "), max |dK_G| = " + fmt(eK) +
+             " (bound " + fmt(bK) + "), max |dk1| = " + fmt(ek1) + ", max |dk2| = " + fmt(ek2) + " (bound " +
+             fmt(bH) + "), max sin(direction error) = " + fmt(edir) + " (worst ratio to its bound " +
+             fmt(edir_ratio) + ")");
   }
   // 4c. kitten vs CGAL::Monge_via_jet_fitting, degrees 2-4, k = 18: same points (query first,
   // then its k nearest, excluding itself, ties by index), same PCA frame (curvature from the
@@ -748,7 +671,7 @@ static void test_curvatures(const PV_range& kitten)
                  " orientation flips); ";
       ok = ok && worst <= 1e-8 && flipped == 0 && rep.number_of_fitted_points == pts.size();
     }
-    report_group("4c. curvatures vs Monge_via_jet_fitting on kitten (k=18)", ok, numbers);
+    report("4c. curvatures vs Monge_via_jet_fitting on kitten (k=18)", ok, numbers);
   }
 }
 
@@ -798,9 +721,9 @@ static void test_contract(const PV_range& kitten)
                     same_bits(a.k1, b.k1) && same_bits(a.k2, b.k2) && same_bits(a.d1, b.d1) && same_bits(a.d2, b.d2) &&
                     a.fitted == b.fitted;
 #ifdef CGAL_LINKED_WITH_TBB
-    report_group("5a. Sequential_tag == Parallel_tag (bitwise, 4 functions, kitten)", ok, "");
+    report("5a. Sequential_tag == Parallel_tag (bitwise, 4 functions, kitten)", ok, "");
 #else
-    report_group("5a. Sequential_tag == Parallel_tag (TBB not linked: Sequential twice)", ok, "");
+    report("5a. Sequential_tag == Parallel_tag (TBB not linked: Sequential twice)", ok, "");
 #endif
   }
   // 5b. Point_set_3 (ps.parameters(), and order(3, ps.parameters())) == vector<pair>.
@@ -847,7 +770,7 @@ static void test_contract(const PV_range& kitten)
       for(Point_set::const_iterator it = e.begin(); it != e.end(); ++it, ++i)
         ok = ok && same_bits(e.normal(*it), f[i].second);
     }
-    report_group("5b. Point_set_3 == std::vector<pair> (4 functions)", ok, "");
+    report("5b. Point_set_3 == std::vector<pair> (4 functions)", ok, "");
   }
   // 5c. Interruption: the callback returns false at 30% progress: nothing written, reported.
   {
@@ -871,8 +794,8 @@ static void test_contract(const PV_range& kitten)
     ok = ok && r.interrupted && std::all_of(H.begin(), H.end(), [](double h) { return h == 7.; });
     r = CGAL::wavejet_enhance_normals<Seq>(a, 18, 2., WJP::order(3).point_map(pm).normal_map(nm).callback(cb));
     ok = ok && r.interrupted && same_bits(a, kitten);
-    report_group("5c. interrupted call changes nothing and reports interrupted", ok,
-                 std::to_string(calls1) + " callback calls before stopping");
+    report("5c. interrupted call changes nothing and reports interrupted", ok,
+           std::to_string(calls1) + " callback calls before stopping");
   }
   // 5c'. The same under Parallel_tag. The callback then runs on a thread of its own (CGAL's
   // Callback_wrapper<Parallel_tag> polls the progress every 10 us) and the TBB workers check its
@@ -915,11 +838,11 @@ static void test_contract(const PV_range& kitten)
     r = CGAL::wavejet_enhance_normals<Par>(a, 18, std::complex<double>(2., 1.),
           WJP::order(3).fitted_map(slot_map(a, fitted)).point_map(pm).normal_map(nm).callback(cb));
     ok = ok && r.interrupted && same_bits(a, kitten) && fitted_untouched(fitted);
-    report_group("5c'. Parallel_tag: interrupted call changes nothing and reports interrupted (4 functions)", ok,
-                 numbers + ", " + std::to_string(calls.load()) + " in all");
+    report("5c'. Parallel_tag: interrupted call changes nothing and reports interrupted (4 functions)", ok,
+           numbers + ", " + std::to_string(calls.load()) + " in all");
   }
 #else
-  report_group("5c'. Parallel_tag interruption: skipped, TBB not linked", true, "");
+  report("5c'. Parallel_tag interruption: skipped, TBB not linked", true, "");
 #endif
   // 5d. Unfittable points with radius neighborhoods: an isolated far point and a NaN point.
   {
@@ -984,7 +907,7 @@ static void test_contract(const PV_range& kitten)
         WJP::fitted_map(slot_map(pts, fitted)).order(4).neighbor_radius(0.2).point_map(pm).normal_map(nm));
       ok = ok && check_report(rep) && untouched(pts) && fitted_ok(fitted);
     }
-    report_group("5d. unfittable points (isolated, NaN) reported, unchanged, marked by fitted_map", ok, numbers);
+    report("5d. unfittable points (isolated, NaN) reported, unchanged, marked by fitted_map", ok, numbers);
   }
 }
 
@@ -1018,8 +941,8 @@ static void test_neighborhood_center_and_written_normals()
     double worst = 0.;
     for(std::size_t i = 0; i < pts.size(); ++i)
       worst = (std::max)(worst, std::sqrt(CGAL::squared_distance(pts[i].first, input[i].first)));
-    report_group("6a. gain 1 on a clean plane with neighbor_radius does not move points", worst <= 1e-14,
-                 "max motion = " + fmt(worst) + " (bound 1e-14)");
+    report("6a. gain 1 on a clean plane with neighbor_radius does not move points", worst <= 1e-14,
+           "max motion = " + fmt(worst) + " (bound 1e-14)");
   }
   // 6b. A curved jittered grid z = A sin(w x) sin(w y), neighbor_radius r = 0.045 (~60 points):
   // every point's result must be that of CGAL::Wavejet_fitting on the ball of radius r around the
@@ -1086,11 +1009,11 @@ static void test_neighborhood_center_and_written_normals()
     }
     const bool ok = status_mismatch == 0 && nfitted > N / 2 && compared + skipped == N && ep <= 1e-12 && en <= 1e-12 &&
                     eh <= 1e-10;
-    report_group("6b. radius neighborhoods centred on the query (== Wavejet_fitting on its ball, r = 0.045)", ok,
-                 std::to_string(nfitted) + " fitted of " + std::to_string(compared) + " compared (" +
-                   std::to_string(skipped) + " skipped near the radius, " + std::to_string(status_mismatch) +
-                   " fitted-status mismatches); max |p' - expected| / Rf = " + fmt(ep) + ", written normal " +
-                   fmt(en) + ", H rel " + fmt(eh));
+    report("6b. radius neighborhoods centred on the query (== Wavejet_fitting on its ball, r = 0.045)", ok,
+           std::to_string(nfitted) + " fitted of " + std::to_string(compared) + " compared (" +
+             std::to_string(skipped) + " skipped near the radius, " + std::to_string(status_mismatch) +
+             " fitted-status mismatches); max |p' - expected| / Rf = " + fmt(ep) + ", written normal " +
+             fmt(en) + ", H rel " + fmt(eh));
   }
   // 6c. write_normals: on the unit sphere (10k Fibonacci points, k = 40, K = 4, gain 2) the normals
   // written by wavejet_enhance_positions are those of the Wavejets at the input points: radial,
@@ -1111,53 +1034,49 @@ static void test_neighborhood_center_and_written_normals()
       worst = (std::max)(worst, a);
       mean += a / double(pts.size());
     }
-    report_group("6c. wavejet_enhance_positions write_normals: radial and outward on a sphere (k=40, K=4)",
-                 worst <= bound && rep.number_of_fitted_points == pts.size(),
-                 "max angle to radial = " + fmt(worst) + " rad, mean " + fmt(mean) + " (bound (rho/R)^5/16 = " +
-                   fmt(bound) + ", rho = " + fmt(rho) + ")");
+    report("6c. wavejet_enhance_positions write_normals: radial and outward on a sphere (k=40, K=4)",
+           worst <= bound && rep.number_of_fitted_points == pts.size(),
+           "max angle to radial = " + fmt(worst) + " rad, mean " + fmt(mean) + " (bound (rho/R)^5/16 = " +
+             fmt(bound) + ", rho = " + fmt(rho) + ")");
   }
+}
+
+/// data/kitten.xyz with its normals, read once.
+static const PV_range& kitten()
+{
+  static const PV_range pts = [] {
+    PV_range v;
+    if(!read_xyz("data/kitten.xyz", v)) throw std::runtime_error("cannot read data/kitten.xyz");
+    return v;
+  }();
+  return pts;
+}
+
+/// 20000 random points of data/fandisk.off (normals (0, 0, 1)), made once.
+static const PV_range& fandisk()
+{
+  static const PV_range pts = [] {
+    CGAL::Surface_mesh<Point> mesh;
+    if(!CGAL::IO::read_polygon_mesh("data/fandisk.off", mesh) || mesh.number_of_faces() == 0)
+      throw std::runtime_error("cannot read data/fandisk.off");
+    PV_range v;
+    CGAL::Random random(42);
+    CGAL::Random_points_in_triangle_mesh_3<CGAL::Surface_mesh<Point> > gen(mesh, random);
+    for(std::size_t i = 0; i < 20000; ++i, ++gen) v.emplace_back(*gen, Vector(0, 0, 1));
+    return v;
+  }();
+  return pts;
 }
 
 int main(int argc, char** argv)
 {
-  const auto t0 = std::chrono::steady_clock::now();
-  const std::string kitten_file = argc > 1 ? argv[1] : "data/kitten.xyz";
-  const std::string mesh_file = argc > 2 ? argv[2] : "data/fandisk.off";
-  PV_range kitten;
-  if(!read_xyz(kitten_file, kitten))
-  {
-    std::cerr << "cannot read " << kitten_file << std::endl;
-    return EXIT_FAILURE;
-  }
-  CGAL::Surface_mesh<Point> mesh;
-  if(!CGAL::IO::read_polygon_mesh(mesh_file, mesh) || mesh.number_of_faces() == 0)
-  {
-    std::cerr << "cannot read " << mesh_file << std::endl;
-    return EXIT_FAILURE;
-  }
-  PV_range fandisk;
-  {
-    CGAL::Random random(42);
-    CGAL::Random_points_in_triangle_mesh_3<CGAL::Surface_mesh<Point> > gen(mesh, random);
-    for(std::size_t i = 0; i < 20000; ++i, ++gen) fandisk.emplace_back(*gen, Vector(0, 0, 1));
-  }
-
-  try
-  {
-    test_sphere_growth();
-    test_position_gains();
-    test_normal_gains();
-    test_normals_vs_jets(kitten, fandisk);
-    test_curvatures(kitten);
-    test_contract(kitten);
-    test_neighborhood_center_and_written_normals();
-  }
-  catch(const std::exception& e)
-  {
-    std::cout << "[FAIL] exception: " << e.what() << std::endl;
-    ++failures;
-  }
-  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::cout << failures << " failed group(s), " << fmt(secs) << " s" << std::endl;
-  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+  return wavejets_test::run_cases(argc, argv, {
+    Case{"analytic.sphere_growth", test_sphere_growth},
+    Case{"analytic.position_gains", test_position_gains},
+    Case{"analytic.normal_gains", test_normal_gains},
+    Case{"versus_jets.normals", [] { test_normals_vs_jets(kitten(), fandisk()); }},
+    Case{"versus_jets.curvatures", [] { test_curvatures(kitten()); }},
+    Case{"contract.concurrency_inputs_interruption_parameters", [] { test_contract(kitten()); }},
+    Case{"contract.neighborhood_center_and_written_normals", test_neighborhood_center_and_written_normals},
+  });
 }

@@ -41,13 +41,10 @@
 #include <utility>
 #include <vector>
 
-typedef CGAL::Epick Kernel;
-typedef Kernel::Point_3 Point;
-typedef Kernel::Vector_3 Vector;
-typedef std::pair<Point, Vector> PV;
-typedef CGAL::First_of_pair_property_map<PV> Point_map;
-typedef CGAL::Second_of_pair_property_map<PV> Normal_map;
-typedef CGAL::Sequential_tag Seq;
+#include "wavejets_test_support.h"
+#include "wavejets_test_types.h"
+
+using namespace wavejets_test::types;
 namespace WJP = CGAL::Wavejets::parameters;
 
 /// Labelled records of doubles, written as text.
@@ -227,12 +224,7 @@ static void point_set_functions(const std::vector<PV>& input, Records& out)
   }
 }
 
-static int contract_failures = 0;
-static void check(bool ok, const std::string& what)
-{
-  std::cout << (ok ? "[ OK ] " : "[FAIL] ") << what << std::endl;
-  if(!ok) ++contract_failures;
-}
+using wavejets_test::check_printed;
 
 /// Whether `f()` throws an exception of type E.
 template <class E, class F>
@@ -244,11 +236,6 @@ static bool throws(const F& f)
   return false;
 }
 
-static bool same_points(const std::vector<PV>& a, const std::vector<PV>& b)
-{
-  return a == b; // CGAL points and vectors compare coordinates exactly
-}
-
 /// The contracts of the public API that the records do not show.
 static void contracts(const std::vector<PV>& input)
 {
@@ -257,22 +244,22 @@ static void contracts(const std::vector<PV>& input)
   std::vector<Point> neighborhood;
   for(std::size_t j = 0; j < 40; ++j) neighborhood.push_back(input[j].first);
   Fitting fitting;
-  check(throws<std::invalid_argument>([&] { fitting(neighborhood.begin(), neighborhood.end(), 0); }),
+  check_printed(throws<std::invalid_argument>([&] { fitting(neighborhood.begin(), neighborhood.end(), 0); }),
         "Wavejet_fitting: order 0 throws std::invalid_argument (in every build type)");
   Fitting::Wavejet_form form = fitting(neighborhood.begin(), neighborhood.end(), 4);
-  check(form.is_valid(), "Wavejet_fitting: order 4 on 40 points is fitted");
-  check(throws<std::out_of_range>([&] { form.principal_curvatures(2); }), "principal_curvatures(2) throws std::out_of_range");
-  check(throws<std::out_of_range>([&] { fitting.pca_basis(3); }), "pca_basis(3) throws std::out_of_range");
+  check_printed(form.is_valid(), "Wavejet_fitting: order 4 on 40 points is fitted");
+  check_printed(throws<std::out_of_range>([&] { form.principal_curvatures(2); }), "principal_curvatures(2) throws std::out_of_range");
+  check_printed(throws<std::out_of_range>([&] { fitting.pca_basis(3); }), "pca_basis(3) throws std::out_of_range");
   // A coefficient vector shortened by the user (writable coefficients()): reads stay within it.
   const std::complex<double> f20 = form.coefficient(2, 0);
   form.coefficients().resize(7); // orders 0 to 2 complete (6 values), one value of order 3
-  check(form.coefficient(2, 0) == f20 && form.coefficient(3, 1) == std::complex<double>(0., 0.) &&
+  check_printed(form.coefficient(2, 0) == f20 && form.coefficient(3, 1) == std::complex<double>(0., 0.) &&
           form.coefficient(4, 0) == std::complex<double>(0., 0.),
         "coefficient(k, n) of a shortened coefficient vector: stored orders read, the others 0");
-  check(std::isfinite(std::abs(form.enclosed_area_coefficient(0))) && std::isfinite(std::abs(form.enclosed_area_coefficient(3))),
+  check_printed(std::isfinite(std::abs(form.enclosed_area_coefficient(0))) && std::isfinite(std::abs(form.enclosed_area_coefficient(3))),
         "enclosed_area_coefficient of a shortened coefficient vector: finite, within the stored orders");
   form.comply_wrt_given_normal(-form.normal_direction());
-  check(form.coefficient(2, 0) == -f20, "comply_wrt_given_normal flips the stored coefficients only");
+  check_printed(form.coefficient(2, 0) == -f20, "comply_wrt_given_normal flips the stored coefficients only");
 
   // Processing_report::moves_points, and the clamped count printed only then.
   const auto pm = CGAL::parameters::point_map(Point_map()).normal_map(Normal_map());
@@ -282,8 +269,8 @@ static void contracts(const std::vector<PV>& input)
   std::ostringstream moved_text, normals_text;
   moved_text << moved;
   normals_text << normals;
-  check(moved.moves_points && !normals.moves_points, "moves_points: true for enhance_positions only");
-  check(moved_text.str().find("clamped") != std::string::npos && normals_text.str().find("clamped") == std::string::npos,
+  check_printed(moved.moves_points && !normals.moves_points, "moves_points: true for enhance_positions only");
+  check_printed(moved_text.str().find("clamped") != std::string::npos && normals_text.str().find("clamped") == std::string::npos,
         "the report prints the clamped count for enhance_positions only: '" + normals_text.str() + "'");
 
   // The functions' defaults are function_defaults()'s: no order given == the table's order (bitwise).
@@ -291,19 +278,19 @@ static void contracts(const std::vector<PV>& input)
   CGAL::wavejet_estimate_normals<Seq>(x, 30, pm);
   CGAL::wavejet_estimate_normals<Seq>(y, 30, WJP::order(CGAL::Wavejets::function_defaults(F::ESTIMATE_NORMALS).order,
     WJP::tangent_plane_order(CGAL::Wavejets::function_defaults(F::ESTIMATE_NORMALS).fitting.tangent_plane_order, pm)));
-  check(same_points(x, y), "estimate_normals: defaults == function_defaults(ESTIMATE_NORMALS), bitwise");
+  check_printed(x == y, "estimate_normals: defaults == function_defaults(ESTIMATE_NORMALS), bitwise");
   x = input, y = input;
   CGAL::wavejet_enhance_positions<Seq>(x, 30, 2., pm);
   const CGAL::Wavejets::Function_defaults d = CGAL::Wavejets::function_defaults(F::ENHANCE_POSITIONS);
-  check(d.maximum_displacement_in_radii > 0 && d.order == 4, "function_defaults(ENHANCE_POSITIONS): order 4, a clamp");
+  check_printed(d.maximum_displacement_in_radii > 0 && d.order == 4, "function_defaults(ENHANCE_POSITIONS): order 4, a clamp");
   CGAL::wavejet_enhance_positions<Seq>(y, 30, 2., WJP::order(d.order, WJP::tangent_plane_order(d.fitting.tangent_plane_order,
     WJP::neighbors_per_coefficient(d.fitting.neighbors_per_coefficient, pm))));
-  check(same_points(x, y), "enhance_positions: defaults == function_defaults(ENHANCE_POSITIONS), bitwise");
+  check_printed(x == y, "enhance_positions: defaults == function_defaults(ENHANCE_POSITIONS), bitwise");
   x = input, y = input;
   CGAL::wavejet_enhance_normals<Seq>(x, 30, std::complex<double>(2., 0.), pm);
   CGAL::wavejet_enhance_normals<Seq>(y, 30, std::complex<double>(2., 0.),
     WJP::order(CGAL::Wavejets::function_defaults(F::ENHANCE_NORMALS).order, pm));
-  check(same_points(x, y), "enhance_normals: defaults == function_defaults(ENHANCE_NORMALS), bitwise");
+  check_printed(x == y, "enhance_normals: defaults == function_defaults(ENHANCE_NORMALS), bitwise");
 }
 
 /// Compares with a reference file: every record present in both, to `tolerance` relative to the
@@ -371,7 +358,7 @@ int main(int argc, char** argv)
             << results.records().size() << " records written to " << output << std::endl;
   if(!os) return EXIT_FAILURE;
 
-  if(contract_failures > 0) return EXIT_FAILURE;
+  if(wavejets_test::all_counts().failures > 0) return EXIT_FAILURE;
   const char* reference = std::getenv("WAVEJETS_REFERENCE_RESULTS");
   if(reference && *reference)
     return compare(results, reference, 1e-12) ? EXIT_SUCCESS : EXIT_FAILURE;

@@ -11,8 +11,10 @@
 // order, positions (and normals, curvatures) of unfitted points untouched, outputs of fitted
 // points finite, report counts consistent with the fitted_map.
 //
-// Plain main(), explicit `if` checks (through check()), one printed line per case; returns
-// EXIT_FAILURE if any check failed. Random inputs come from fixed seeds. Run from test/Wavejets.
+// Four groups of cases (class, outliers, functions, determinism; the argument runs one, CTest has
+// an entry per group), explicit `if` checks (through check()), one printed line per section;
+// returns EXIT_FAILURE if any check failed. Random inputs come from fixed seeds (one generator per
+// group, shared by its sections in order). Run from test/Wavejets.
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Point_set_3.h>
@@ -41,6 +43,8 @@
 #include <utility>
 #include <vector>
 
+#include "wavejets_test_support.h"
+
 #ifdef CGAL_LINKED_WITH_TBB
 #include <tbb/global_control.h>
 #include <tbb/task_arena.h>
@@ -64,44 +68,13 @@ const double inf = std::numeric_limits<double>::infinity();
 const double nan_value = std::numeric_limits<double>::quiet_NaN();
 
 // ------------------------------------------------------------------------------------------------
-// Checks: failures are counted per case; one line per case.
+// Checks (support/wavejets_test_support.h): failures are counted per section; one line per section.
 
-static int total_failures = 0;
-static int case_checks = 0, case_failures = 0;
-static std::string case_name;
+using wavejets_test::begin_section;
+using wavejets_test::check;
+using wavejets_test::end_section;
+using wavejets_test::same_bits;
 
-void begin_case(const std::string& name)
-{
-  case_name = name;
-  case_checks = case_failures = 0;
-}
-void end_case(const std::string& info = "")
-{
-  std::cout << (case_failures == 0 ? "PASS " : "FAIL ") << case_name << " (" << case_checks << " checks"
-            << (case_failures ? ", " + std::to_string(case_failures) + " failed" : std::string()) << ")"
-            << (info.empty() ? "" : ": " + info) << std::endl;
-}
-bool check(bool ok, const std::string& what)
-{
-  ++case_checks;
-  if(!ok)
-  {
-    ++case_failures;
-    ++total_failures;
-    std::cout << "    check failed [" << case_name << "]: " << what << std::endl;
-  }
-  return ok;
-}
-
-bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof(double)) == 0; }
-bool same_bits(const Point& a, const Point& b)
-{
-  return same_bits(a.x(), b.x()) && same_bits(a.y(), b.y()) && same_bits(a.z(), b.z());
-}
-bool same_bits(const Vector& a, const Vector& b)
-{
-  return same_bits(a.x(), b.x()) && same_bits(a.y(), b.y()) && same_bits(a.z(), b.z());
-}
 bool is_fin(double x) { return std::isfinite(x); }
 bool is_fin(const Point& p) { return is_fin(p.x()) && is_fin(p.y()) && is_fin(p.z()); }
 bool is_fin(const Vector& v) { return is_fin(v.x()) && is_fin(v.y()) && is_fin(v.z()); }
@@ -429,12 +402,10 @@ std::vector<std::size_t> nearest(const std::vector<Point>& pts, std::size_t i, s
 // ================================================================================================
 // Class cases.
 
-void class_cases()
+// Empty, tiny, identical, duplicated, collinear and planar neighborhoods.
+static void class_degenerate_neighborhoods(std::mt19937& rng, const Sample& patch)
 {
-  std::mt19937 rng(1);
-  const Sample patch = paraboloid(60, 0.8, -0.3, 0.3, rng);
-
-  begin_case("class: empty range");
+  begin_section("class: empty range");
   {
     std::vector<Point> none;
     Form f = fit(none, 2, "empty");
@@ -443,9 +414,9 @@ void class_cases()
     Fitting fitting;
     check(!fitting(empty_list.begin(), empty_list.end(), 3).is_valid(), "empty std::list gives an invalid form");
   }
-  end_case("status TOO_FEW_POINTS, zero form");
+  end_section("status TOO_FEW_POINTS, zero form");
 
-  begin_case("class: 1 to 5 points");
+  begin_section("class: 1 to 5 points");
   {
     for(std::size_t n = 1; n <= 5; ++n)
     {
@@ -459,9 +430,9 @@ void class_cases()
       if(g.is_valid()) check(g.order() == 1 && g.mean_curvature() == 0, "order-1 fit is a plane (zero curvature)");
     }
   }
-  end_case("TOO_FEW_POINTS below 1.1 points per unknown; order 1 plane with 4-5 points if allowed");
+  end_section("TOO_FEW_POINTS below 1.1 points per unknown; order 1 plane with 4-5 points if allowed");
 
-  begin_case("class: all points identical");
+  begin_section("class: all points identical");
   {
     std::vector<Point> pts(100, Point(1.5, -2., 3.));
     Form f = fit(pts, 2, "identical");
@@ -471,9 +442,9 @@ void class_cases()
     Form g = fit(pts, 4, "identical with given radius", o);
     check(g.status() == Status::DEGENERATE_NEIGHBORHOOD, "identical points with a given radius: DEGENERATE_NEIGHBORHOOD");
   }
-  end_case("DEGENERATE_NEIGHBORHOOD");
+  end_section("DEGENERATE_NEIGHBORHOOD");
 
-  begin_case("class: many exact duplicates");
+  begin_section("class: many exact duplicates");
   {
     std::vector<Point> base(patch.points.begin(), patch.points.begin() + 30), dup;
     for(int c = 0; c < 5; ++c) dup.insert(dup.end(), base.begin(), base.end());
@@ -489,9 +460,9 @@ void class_cases()
     Form fh = fit(heavy, 2, "40 copies of the query point");
     check(fh.is_valid(), "40 copies of the query point among 30 distinct points: still valid");
   }
-  end_case("valid; uniform duplication leaves the fit unchanged");
+  end_section("valid; uniform duplication leaves the fit unchanged");
 
-  begin_case("class: collinear points");
+  begin_section("class: collinear points");
   {
     std::vector<Point> pts;
     for(int i = 0; i < 50; ++i) pts.push_back(Point(0.1 * i, -0.2 * i, 0.05 * i));
@@ -502,9 +473,9 @@ void class_cases()
     Form g = fit(near_line, 2, "collinear up to 1e-13");
     check(!g.is_valid(), "collinear up to 1e-13: not fitted (" + std::string(CGAL::Wavejets::fit_status_name(g.status())) + ")");
   }
-  end_case("DEGENERATE_NEIGHBORHOOD");
+  end_section("DEGENERATE_NEIGHBORHOOD");
 
-  begin_case("class: perfectly planar patch");
+  begin_section("class: perfectly planar patch");
   {
     std::uniform_real_distribution<double> U(-1, 1);
     const Vector n0 = Vector(1, 2, 2) / 3.;
@@ -525,9 +496,13 @@ void class_cases()
       check(length(f.origin() - c) < 1e-12, "plane: the query point is on its Wavejet");
     }
   }
-  end_case("valid, zero curvature, exact normal");
+  end_section("valid, zero curvature, exact normal");
+}
 
-  begin_case("class: NaN / infinite coordinates");
+// Non-finite and far coordinates, radii far below the spacing, order 0 and absurd orders.
+static void class_coordinates_radii_and_orders(const Sample& patch)
+{
+  begin_section("class: NaN / infinite coordinates");
   {
     std::vector<Point> pts = patch.points;
     pts[10] = Point(nan_value, 0, 0);
@@ -555,9 +530,9 @@ void class_cases()
       Form t = fit(tiny, 9, "scaled by " + str(scale));
       check(t.status() == Status::OUT_OF_RANGE, "patch scaled by " + str(scale) + ": OUT_OF_RANGE");
     }
-  end_case("NON_FINITE_INPUT / OUT_OF_RANGE; the form keeps the query point");
+  end_section("NON_FINITE_INPUT / OUT_OF_RANGE; the form keeps the query point");
 
-  begin_case("class: translation by 1e6 / 1e7");
+  begin_section("class: translation by 1e6 / 1e7");
   {
     // (a) dyadic coordinates: the translated inputs are exact, so the results must agree to
     // relative 1e-9 of the local scale (they are in fact identical).
@@ -609,10 +584,10 @@ void class_cases()
       check(generic <= 100 * ulp / Rf, "generic patch translated by 1e7: relative change " + str(generic) +
             " <= 100 ulp(1e7)/Rf = " + str(100 * ulp / Rf));
     }
-    end_case("dyadic: max relative change " + str(worst) + "; generic (rounded) 1e7: " + str(generic));
+    end_section("dyadic: max relative change " + str(worst) + "; generic (rounded) 1e7: " + str(generic));
   }
 
-  begin_case("class: neighborhood_radius far smaller than every neighbor distance");
+  begin_section("class: neighborhood_radius far smaller than every neighbor distance");
   {
     // Fitting_options::neighborhood_radius is only the Rf of the rescaling (Fitting_options.h:
     // "Neighborhood radius Rf used to rescale the coordinates"; fitting_core.h divides the offsets
@@ -671,11 +646,11 @@ void class_cases()
         check(f.status() == Status::OUT_OF_RANGE, "order " + std::to_string(order) + ", radius " + str(r) + " < 1e-20: OUT_OF_RANGE");
       }
     }
-    end_case("nearest neighbor at " + str(dmin) + "; same fit as the default Rf, max relative change " + str(worst) +
+    end_section("nearest neighbor at " + str(dmin) + "; same fit as the default Rf, max relative change " + str(worst) +
              "; OUT_OF_RANGE below 1e-20");
   }
 
-  begin_case("class: order 0 and absurd orders");
+  begin_section("class: order 0 and absurd orders");
   {
     bool threw = false;
     std::string msg;
@@ -696,9 +671,13 @@ void class_cases()
     Form fmax = fit(patch.points, std::size_t(-1) / 4, "order SIZE_MAX/4");
     check(fmax.is_valid(), "order SIZE_MAX/4: adaptive order gives a valid form (order " + std::to_string(fmax.order()) + ")");
   }
-  end_case("order 0 -> std::invalid_argument; large orders lowered adaptively");
+  end_section("order 0 -> std::invalid_argument; large orders lowered adaptively");
+}
 
-  begin_case("class: bad normals (zero, NaN, unoriented)");
+// Bad given normals; neighborhoods that are not a height field (two sheets, sharp edges).
+static void class_normals_and_non_height_fields(std::mt19937& rng, const Sample& patch)
+{
+  begin_section("class: bad normals (zero, NaN, unoriented)");
   {
     const Vector zero(0, 0, 0), nanv(nan_value, 0, 1), up(0, 0, 1), down(0, 0, -1);
     Form fz = fit(patch.points, 2, "zero normal", CGAL::Wavejets::Fitting_options(), &zero);
@@ -720,9 +699,9 @@ void class_cases()
     Form tiny = fit(patch.points, 2, "denormal normal", CGAL::Wavejets::Fitting_options(), &denormal);
     check(tiny.is_valid(), "denormal-length normal: valid");
   }
-  end_case("zero: unoriented (ORIENT) or DEGENERATE (SEED_FRAME); NaN: NON_FINITE_INPUT");
+  end_section("zero: unoriented (ORIENT) or DEGENERATE (SEED_FRAME); NaN: NON_FINITE_INPUT");
 
-  begin_case("class: two sheets (not a height field)");
+  begin_section("class: two sheets (not a height field)");
   {
     std::uniform_real_distribution<double> U(-1, 1);
     std::vector<Point> pts(1, Point(0, 0, 0));
@@ -731,9 +710,9 @@ void class_cases()
     check(f.is_valid(), "two planes: finite fit");
     check(std::abs(length(f.origin() - pts[0])) <= 0.05, "the projection stays between the sheets");
   }
-  end_case("finite fit");
+  end_section("finite fit");
 
-  begin_case("class: fandisk, neighborhoods across the sharp edges");
+  begin_section("class: fandisk, neighborhoods across the sharp edges");
   {
     Sample s;
     std::vector<std::vector<std::size_t> > faces;
@@ -817,13 +796,22 @@ void class_cases()
             std::to_string(corrected_fits) + " of them corrected)");
       check(corrected_fits > 500, "the corrections ran on many fits (" + std::to_string(corrected_fits) +
             "; measured 723 with a given normal)");
-      end_case(std::to_string(sharp_count) + " neighborhoods across an edge, " + std::to_string(valid) + "/" +
+      end_section(std::to_string(sharp_count) + " neighborhoods across an edge, " + std::to_string(valid) + "/" +
                std::to_string(fits) + " fits valid; max |f00|/Rf " + str(max_height[0]) + " (order 2), " + str(max_height[1]) +
                " (order 4); max |k| Rf " + str(max_k[0]) + ", " + str(max_k[1]));
     }
     else
-      end_case();
+      end_section();
   }
+}
+
+void class_cases()
+{
+  std::mt19937 rng(1);
+  const Sample patch = paraboloid(60, 0.8, -0.3, 0.3, rng);
+  class_degenerate_neighborhoods(rng, patch);
+  class_coordinates_radii_and_orders(patch);
+  class_normals_and_non_height_fields(rng, patch);
 }
 
 // ------------------------------------------------------------------------------------------------
@@ -833,7 +821,7 @@ void outlier_cases()
 {
   const double R = 1.;
   // Class: a spherical cap around the north pole, 150 points within 0.3 rad, radial noise 1e-3.
-  begin_case("class: 10% outliers on a sphere, robust_iterations");
+  begin_section("class: 10% outliers on a sphere, robust_iterations");
   {
     std::mt19937 rng(11);
     std::normal_distribution<double> G(0., 1.);
@@ -866,11 +854,11 @@ void outlier_cases()
     }
     check(err[1] > 3 * err[0], "the outliers do hurt plain least squares (" + str(err[1]) + " vs clean " + str(err[0]) + ")");
     check(err[2] <= 1.5 * err[0], "robust error within 1.5x the clean error (" + str(err[2]) + " vs " + str(err[0]) + ")");
-    end_case("mean |H - H_exact|: clean " + str(err[0]) + ", outliers " + str(err[1]) + ", outliers+robust(5) " + str(err[2]));
+    end_section("mean |H - H_exact|: clean " + str(err[0]) + ", outliers " + str(err[1]) + ", outliers+robust(5) " + str(err[2]));
   }
 
   // Functions: whole sphere, 4000 points, 10% outliers, k = 40; error measured on the inliers.
-  begin_case("functions: 10% outliers on a sphere, robust_iterations");
+  begin_section("functions: 10% outliers on a sphere, robust_iterations");
   {
     std::mt19937 rng(12);
     std::uniform_real_distribution<double> U(0., 1.);
@@ -895,20 +883,17 @@ void outlier_cases()
     const double e0 = error(clean, 0), e1 = error(dirty, 0), e2 = error(dirty, 5);
     check(e1 > 3 * e0, "the outliers do hurt plain least squares (" + str(e1) + " vs clean " + str(e0) + ")");
     check(e2 <= 1.5 * e0, "robust error within 1.5x the clean error (" + str(e2) + " vs " + str(e0) + ")");
-    end_case("mean |H - H_exact| on inliers: clean " + str(e0) + ", outliers " + str(e1) + ", outliers+robust(5) " + str(e2));
+    end_section("mean |H - H_exact| on inliers: clean " + str(e0) + ", outliers " + str(e1) + ", outliers+robust(5) " + str(e2));
   }
 }
 
 // ================================================================================================
 // Function cases.
 
-void function_cases()
+// Empty, tiny, identical, duplicated, collinear and planar inputs.
+static void function_degenerate_inputs(std::mt19937& rng, const Sample& para)
 {
-  std::mt19937 rng(2);
-  const Sample para = paraboloid(400, 0.8, -0.3, 1., rng);
-  const Point_set base = to_point_set(para);
-
-  begin_case("functions: empty range");
+  begin_section("functions: empty range");
   {
     Point_set empty;
     empty.add_normal_map();
@@ -919,9 +904,9 @@ void function_cases()
       v, 10, WP::order(2).point_map(CGAL::First_of_pair_property_map<PN>()).normal_map(CGAL::Second_of_pair_property_map<PN>()));
     check(rep.number_of_points == 0, "empty std::vector, Parallel: zero points");
   }
-  end_case("empty report, no throw");
+  end_section("empty report, no throw");
 
-  begin_case("functions: 1 to 5 points");
+  begin_section("functions: 1 to 5 points");
   {
     for(std::size_t n = 1; n <= 5; ++n)
     {
@@ -934,9 +919,9 @@ void function_cases()
       check(n < 4 ? all_unfitted(r1) : all_fitted(r1, n), std::to_string(n) + " points, minimum order 1: fitted iff n >= 4");
     }
   }
-  end_case("unfitted and counted (order-1 planes from 4 points when minimum_order(1))");
+  end_section("unfitted and counted (order-1 planes from 4 points when minimum_order(1))");
 
-  begin_case("functions: all points identical");
+  begin_section("functions: all points identical");
   {
     Sample s;
     for(int i = 0; i < 200; ++i) s.add(Point(1, 2, 3), Vector(0, 0, 1));
@@ -946,9 +931,9 @@ void function_cases()
     Four_runs rr = run_four(ps, 0, 2., 2., WP::order(2).neighbor_radius(0.5), "identical, radius");
     check(all_unfitted(rr), "identical with neighbor_radius: nothing fitted");
   }
-  end_case("all unfitted, unchanged");
+  end_section("all unfitted, unchanged");
 
-  begin_case("functions: many exact duplicates");
+  begin_section("functions: many exact duplicates");
   {
     Sample s;
     for(int c = 0; c < 3; ++c)
@@ -966,9 +951,9 @@ void function_cases()
       }
     check(same, "copies of a point get bitwise identical results (ties broken by index)");
   }
-  end_case("fitted; duplicates identical");
+  end_section("fitted; duplicates identical");
 
-  begin_case("functions: collinear points");
+  begin_section("functions: collinear points");
   {
     Sample s;
     for(int i = 0; i < 100; ++i) s.add(Point(0.01 * i, 0.02 * i, -0.01 * i), Vector(0, 0, 1));
@@ -976,9 +961,9 @@ void function_cases()
     Four_runs r = run_four(ps, 20, 2., 2., WP::order(2), "collinear");
     check(all_unfitted(r), "collinear: nothing fitted");
   }
-  end_case("all unfitted, unchanged");
+  end_section("all unfitted, unchanged");
 
-  begin_case("functions: perfectly planar patch");
+  begin_section("functions: perfectly planar patch");
   {
     std::uniform_real_distribution<double> U(-1, 1);
     Sample s;
@@ -1002,9 +987,13 @@ void function_cases()
     check(H < 1e-9, "plane: zero curvature (" + str(H) + ")");
     check(motion < 1e-12, "plane: no motion for gain 3 (" + str(motion) + ")");
   }
-  end_case("fitted, exact normals, zero curvature, no motion");
+  end_section("fitted, exact normals, zero curvature, no motion");
+}
 
-  begin_case("functions: NaN / infinite coordinates in some points");
+// Non-finite and far coordinates, useless radii, k larger than the set.
+static void function_coordinates_radii_and_k(const Sample& para, const Point_set& base)
+{
+  begin_section("functions: NaN / infinite coordinates in some points");
   {
     Sample s = para;
     std::vector<std::size_t> bad = {3, 50, 51, 199, 399};
@@ -1042,9 +1031,9 @@ void function_cases()
     Four_runs rr = run_four(to_point_set(all_bad), 0, 2., 2., WP::order(2).neighbor_radius(1.), "only non-finite, radius");
     check(all_unfitted(rr), "only non-finite points with neighbor_radius: nothing fitted");
   }
-  end_case("non-finite points unfitted, unchanged, counted; others unaffected");
+  end_section("non-finite points unfitted, unchanged, counted; others unaffected");
 
-  begin_case("functions: translation by 1e6 / 1e7");
+  begin_section("functions: translation by 1e6 / 1e7");
   {
     const Sample d = dyadic_patch(16);
     const Point_set p0 = to_point_set(d);
@@ -1076,20 +1065,20 @@ void function_cases()
       check(ok, "translation by " + str(t.x()) + ": curvatures and normals change by <= 1e-9 (relative to Rf)");
       check(disp_ok, "translation by " + str(t.x()) + ": displacements change by <= max(1e-9 Rf, ulp(coordinate)) (output rounding)");
     }
-    end_case("max relative change of curvatures/normals " + str(worst) + ", of displacements " + str(worst_disp) +
+    end_section("max relative change of curvatures/normals " + str(worst) + ", of displacements " + str(worst_disp) +
              " (output rounding)");
   }
 
-  begin_case("functions: radius too small for any neighbor");
+  begin_section("functions: radius too small for any neighbor");
   {
     Four_runs r = run_four(base, 0, 2., 2., WP::order(2).neighbor_radius(1e-9), "radius 1e-9");
     check(all_unfitted(r), "radius 1e-9, k = 0: nothing fitted, nothing changed");
     Four_runs r2 = run_four(base, 30, 2., 2., WP::order(2).neighbor_radius(1e-300), "radius 1e-300");
     check(all_unfitted(r2), "radius 1e-300, k = 30: nothing fitted (no fallback to k nearest)");
   }
-  end_case("all unfitted, counted");
+  end_section("all unfitted, counted");
 
-  begin_case("functions: k larger than the number of points");
+  begin_section("functions: k larger than the number of points");
   {
     Sample s(para);
     s.points.resize(50);
@@ -1099,9 +1088,13 @@ void function_cases()
     Four_runs r2 = run_four(to_point_set(s), 4000000000u, 2., 2., WP::order(2), "k = 4e9");
     check(all_fitted(r2, 50), "k = 4e9 with 50 points: every point fitted");
   }
-  end_case("fitted with all points");
+  end_section("fitted with all points");
+}
 
-  begin_case("functions: order 0 and absurd orders");
+// Bad orders, gains and parameters; zero, NaN and unoriented normals.
+static void function_parameters_and_normals(std::mt19937& rng, const Sample& para, const Point_set& base)
+{
+  begin_section("functions: order 0 and absurd orders");
   {
     Four_runs r0 = run_four(base, 20, 2., 2., WP::order(0), "order 0", all_throw);
     for(int f = 0; f < 4; ++f)
@@ -1117,9 +1110,9 @@ void function_cases()
     Four_runs rmin2 = run_four(base, 30, 2., 2., WP::order(3).minimum_order(50), "minimum order 50 > order");
     check(all_fitted(rmin2, base.size()), "minimum_order above the order is clamped to the order: all fitted");
   }
-  end_case("order 0 -> std::invalid_argument; huge orders lowered");
+  end_section("order 0 -> std::invalid_argument; huge orders lowered");
 
-  begin_case("functions: gains (0, negative, 1e6, complex, non-finite)");
+  begin_section("functions: gains (0, negative, 1e6, complex, non-finite)");
   {
     std::vector<double> Rf = kth_distances(para.points, 30);
     for(double g : {0., -1., -1e6, 1e6, 1e100, -1e100})
@@ -1148,9 +1141,9 @@ void function_cases()
     Four_runs ri = run_four(base, 30, inf, std::complex<double>(inf, 0), WP::order(4), "infinite gain", enhance_only);
     check(ri.threw[2] && ri.threw[3], "infinite gain: enhance_* throw");
   }
-  end_case("finite, clamped to Rf/2 by default; non-finite gains -> std::invalid_argument");
+  end_section("finite, clamped to Rf/2 by default; non-finite gains -> std::invalid_argument");
 
-  begin_case("functions: bad parameters");
+  begin_section("functions: bad parameters");
   {
     run_four(base, 0, 2., 2., WP::order(2), "k = 0 without radius", all_throw);
     run_four(base, 1, 2., 2., WP::order(2), "k = 1 without radius", all_throw);
@@ -1196,9 +1189,9 @@ void function_cases()
     catch(const std::invalid_argument&) { threw = true; }
     check(threw, "estimate_curvatures without output map: std::invalid_argument");
   }
-  end_case("std::invalid_argument with the function's name and the parameter");
+  end_section("std::invalid_argument with the function's name and the parameter");
 
-  begin_case("functions: zero-length and NaN normals; unoriented normals");
+  begin_section("functions: zero-length and NaN normals; unoriented normals");
   {
     Sample s = para;
     std::uniform_int_distribution<int> coin(0, 1);
@@ -1234,9 +1227,13 @@ void function_cases()
     }
     check(e < 1e-9, "flipping the input normals (and conjugating the gain) flips the enhanced normals and H (" + str(e) + ")");
   }
-  end_case("zero/NaN normals: point fitted unoriented; outputs follow input orientation");
+  end_section("zero/NaN normals: point fitted unoriented; outputs follow input orientation");
+}
 
-  begin_case("functions: two sheets (thin plate with oriented normals)");
+// Inputs that are not a height field: two sheets, sharp edges.
+static void function_non_height_fields(std::mt19937& rng)
+{
+  begin_section("functions: two sheets (thin plate with oriented normals)");
   {
     Sample s;
     std::uniform_real_distribution<double> U(-1, 1);
@@ -1269,11 +1266,11 @@ void function_cases()
     check(m_restricted < 1e-9 && m_unclamped < 1e-9, "restrict_to_consistent_normals: each sheet is a plane, no motion (" +
           str(m_restricted) + ")");
     check(bad_normal < 1e-12, "restricted: enhanced normals are the sheets' own normals");
-    end_case("max motion: mixed " + str(m_mixed) + " (clamped " + std::to_string(mixed.report[2].number_of_clamped_points) +
+    end_section("max motion: mixed " + str(m_mixed) + " (clamped " + std::to_string(mixed.report[2].number_of_clamped_points) +
              "), restricted " + str(m_restricted));
   }
 
-  begin_case("functions: fandisk (sharp edges)");
+  begin_section("functions: fandisk (sharp edges)");
   {
     Sample s;
     std::vector<std::vector<std::size_t> > faces;
@@ -1299,12 +1296,23 @@ void function_cases()
         check(all_fitted(r, s.size()), "every fandisk vertex fitted");
         check(bounded, "motion bounded by the clamp");
       }
-      end_case("max |motion|/Rf: clamp " + str(worst[0]) + " (" + std::to_string(clamped[0]) + " clamped), restricted " +
+      end_section("max |motion|/Rf: clamp " + str(worst[0]) + " (" + std::to_string(clamped[0]) + " clamped), restricted " +
                str(worst[1]) + " (" + std::to_string(clamped[1]) + " clamped)");
     }
     else
-      end_case();
+      end_section();
   }
+}
+
+void function_cases()
+{
+  std::mt19937 rng(2);
+  const Sample para = paraboloid(400, 0.8, -0.3, 1., rng);
+  const Point_set base = to_point_set(para);
+  function_degenerate_inputs(rng, para);
+  function_coordinates_radii_and_k(para, base);
+  function_parameters_and_normals(rng, para, base);
+  function_non_height_fields(rng);
 }
 
 // ================================================================================================
@@ -1366,10 +1374,6 @@ std::vector<double> all_outputs(std::vector<PN> pts, unsigned int k)
   return out;
 }
 
-bool same_bits(const std::vector<double>& a, const std::vector<double>& b)
-{
-  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
-}
 
 void determinism_cases()
 {
@@ -1384,7 +1388,7 @@ void determinism_cases()
     sets.push_back(v);
   }
 
-  begin_case("determinism: the drivers' visiting order (Neighbor_query::processing_order)");
+  begin_section("determinism: the drivers' visiting order (Neighbor_query::processing_order)");
   {
     // The functions visit the points in the kd-tree's leaf order (memory locality); each point's
     // result must not depend on it, which the Sequential / Parallel / arena cases below check. Here:
@@ -1418,11 +1422,11 @@ void determinism_cases()
     const Query empty_tree(qp, std::vector<unsigned char>(qp.size(), 0));
     check(empty_tree.processing_order().size() == qp.size(),
           "empty tree: every index, by index");
-    end_case("mean step " + std::to_string(step_order / (order.size() - 4)) + " vs " +
+    end_section("mean step " + std::to_string(step_order / (order.size() - 4)) + " vs " +
              std::to_string(step_input / (order.size() - 4)) + " in input order");
   }
 
-  begin_case("determinism: Sequential vs Parallel, repeated runs");
+  begin_section("determinism: Sequential vs Parallel, repeated runs");
   {
     const std::vector<double> s1 = all_outputs<CGAL::Sequential_tag>(sets[0], 25);
     const std::vector<double> s2 = all_outputs<CGAL::Sequential_tag>(sets[0], 25);
@@ -1460,10 +1464,10 @@ void determinism_cases()
                  "checks nothing (configure with -DWAVEJETS_REQUIRE_TBB=ON to make this an error)" << std::endl;
     info = "WITHOUT TBB: vacuous";
 #endif
-    end_case(info);
+    end_section(info);
   }
 
-  begin_case("thread safety: concurrent calls on different point sets");
+  begin_section("thread safety: concurrent calls on different point sets");
   {
     // For each set, two std::threads at the same time: one runs the four functions with
     // Sequential_tag and then Wavejet_fitting on its neighborhoods, the other the four functions
@@ -1501,7 +1505,7 @@ void determinism_cases()
       check(same_bits(serial[s], concurrent_parallel[s]), "set " + std::to_string(s) + ": concurrent Parallel functions == serial");
       check(same_bits(serial_fits[s], concurrent_fits[s]), "set " + std::to_string(s) + ": concurrent Wavejet_fitting == serial");
     }
-    end_case(std::to_string(threads.size()) + " std::threads, " + std::to_string(sets.size()) + " of them with " +
+    end_section(std::to_string(threads.size()) + " std::threads, " + std::to_string(sets.size()) + " of them with " +
 #ifdef CGAL_LINKED_WITH_TBB
              "Parallel_tag"
 #else
@@ -1511,16 +1515,14 @@ void determinism_cases()
   }
 }
 
-int main()
+int main(int argc, char** argv)
 {
   std::cout.precision(4);
-  const auto t0 = std::chrono::steady_clock::now();
-  class_cases();
-  outlier_cases();
-  function_cases();
-  determinism_cases();
-  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::cout << (total_failures ? "FAILED: " : "All robustness checks passed") << (total_failures ? std::to_string(total_failures) + " check(s)" : "")
-            << " (" << secs << " s)" << std::endl;
-  return total_failures ? EXIT_FAILURE : EXIT_SUCCESS;
+  using wavejets_test::Case;
+  return wavejets_test::run_cases(argc, argv, {
+    Case{"class", class_cases},
+    Case{"outliers", outlier_cases},
+    Case{"functions", function_cases},
+    Case{"determinism", determinism_cases},
+  });
 }

@@ -10,10 +10,9 @@
 //   - a rank-deficient system is reported (false) by every variant.
 // A clone the processor cannot run is reported as skipped, never run.
 // The kernels are written once for a four-lane type: the GCC/Clang vector extension, or (built with
-// CGAL_WAVEJETS_NO_VECTOR_EXTENSIONS, as other compilers get) a plain struct. `--write FILE` saves the
-// baseline kernel's solutions bit for bit; `--compare FILE` checks that this build's baseline gives
-// the same bits: CTest runs the vector build with --write and the portable build
-// (test_simd_kernels_portable) with --compare.
+// CGAL_WAVEJETS_NO_VECTOR_EXTENSIONS, as other compilers get) a plain struct: the case
+// portable_build_bitwise saves the baseline kernel's solutions bit for bit in one build and compares
+// them in the other (see test_portable_build_bitwise()).
 
 #include <CGAL/Wavejets/internal/least_squares.h>
 
@@ -36,15 +35,11 @@
 #include <string>
 #include <vector>
 
-namespace WI = CGAL::Wavejets::internal;
+#include "wavejets_test_support.h"
 
-static int failures = 0, checks = 0;
-static void check(bool ok, const std::string& what)
-{
-  ++checks;
-  std::cout << (ok ? "[ OK ] " : "[FAIL] ") << what << std::endl;
-  if(!ok) ++failures;
-}
+namespace WI = CGAL::Wavejets::internal;
+using wavejets_test::Case;
+using wavejets_test::check_printed;
 
 typedef bool (*Kernel)(double*, std::size_t, std::size_t, double*, double*);
 
@@ -86,36 +81,8 @@ static double relative_difference(const std::vector<double>& a, const std::vecto
   return n > 0 ? d / n : d;
 }
 
-/// Writes (`write`) or compares the baseline solutions, as exact hexadecimal doubles.
-static void baseline_file(const std::vector<System>& systems, const std::string& mode, const std::string& path)
-{
-  std::vector<double> all, c;
-  for(const System& s : systems)
-  {
-    solve(&WI::householder_kernel, s, c);
-    all.insert(all.end(), c.begin(), c.end());
-  }
-  if(mode == "--write")
-  {
-    std::ofstream out(path);
-    char b[64];
-    for(double x : all) { std::snprintf(b, sizeof b, "%a\n", x); out << b; }
-    check(bool(out), "baseline solutions written to " + path);
-    return;
-  }
-  std::ifstream in(path);
-  std::vector<double> reference;
-  std::string line;
-  while(std::getline(in, line)) reference.push_back(std::strtod(line.c_str(), nullptr));
-  std::size_t same = 0;
-  for(std::size_t i = 0; i < all.size() && i < reference.size(); ++i)
-    same += std::memcmp(&all[i], &reference[i], sizeof(double)) == 0;
-  check(reference.size() == all.size() && same == all.size(),
-        std::string(CGAL_WAVEJETS_FOUR_LANES) + " build vs " + path + ": " + std::to_string(same) + " of " +
-          std::to_string(reference.size()) + " baseline values bitwise equal");
-}
-
-int main(int argc, char** argv)
+/// The random full-rank systems: the sizes of the Wavejet systems and a few others.
+static std::vector<System> random_systems()
 {
   std::mt19937_64 random(20261201);
   std::uniform_real_distribution<double> uniform(-1., 1.);
@@ -134,13 +101,22 @@ int main(int argc, char** argv)
         }
         systems.push_back(s);
       }
+  return systems;
+}
 
 #if (defined(__GNUC__) || defined(__clang__)) && (defined(__x86_64__) || defined(__i386__))
-  const bool has_avx = WI::avx_dispatch && __builtin_cpu_supports("avx");
-  const bool has_fma = WI::avx_dispatch && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+static bool processor_has_avx() { return WI::avx_dispatch && __builtin_cpu_supports("avx"); }
+static bool processor_has_fma() { return WI::avx_dispatch && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"); }
 #else
-  const bool has_avx = false, has_fma = false;
+static bool processor_has_avx() { return false; }
+static bool processor_has_fma() { return false; }
 #endif
+
+// Every variant on the same full-rank systems: the documented agreement, and the dispatch.
+static void test_full_rank_agreement()
+{
+  const std::vector<System> systems = random_systems();
+  const bool has_avx = processor_has_avx(), has_fma = processor_has_fma();
   if(!WI::avx_dispatch)
     std::cout << "this build has no AVX dispatch (not x86 with g++/clang++, or CGAL_WAVEJETS_NO_AVX_DISPATCH): "
                  "the baseline kernel alone is checked" << std::endl;
@@ -175,32 +151,78 @@ int main(int argc, char** argv)
     dispatch_ok = dispatch_ok && dispatched == best;
   }
   const std::string n = std::to_string(systems.size()) + " systems";
-  check(all_solved, "every variant solves the " + n + " (full rank)");
-  check(worst_baseline <= 1e-13, "baseline vs Eigen HouseholderQR: " + sci(worst_baseline) +
+  check_printed(all_solved, "every variant solves the " + n + " (full rank)");
+  check_printed(worst_baseline <= 1e-13, "baseline vs Eigen HouseholderQR: " + sci(worst_baseline) +
                                    " relative / condition number (<= 1e-13)");
-  if(has_avx) check(avx_bitwise, "AVX clone == baseline, bitwise, on " + n);
+  if(has_avx) check_printed(avx_bitwise, "AVX clone == baseline, bitwise, on " + n);
   else std::cout << "[SKIP] AVX clone: the processor has no AVX" << std::endl;
-  if(has_fma) check(fma_close, "AVX2 + FMA clone vs baseline: " + sci(worst_fma) +
+  if(has_fma) check_printed(fma_close, "AVX2 + FMA clone vs baseline: " + sci(worst_fma) +
                                  " relative / condition number (<= 1e-12); bits differ on " +
                                  std::to_string(fma_differs) + " of " + n);
   else std::cout << "[SKIP] AVX2 + FMA clone: the processor has no AVX2 + FMA" << std::endl;
-  check(dispatch_ok, std::string("the dispatch picks the ") + (has_fma ? "AVX2 + FMA" : has_avx ? "AVX" : "baseline") +
+  check_printed(dispatch_ok, std::string("the dispatch picks the ") + (has_fma ? "AVX2 + FMA" : has_avx ? "AVX" : "baseline") +
                        " kernel (bitwise equal to it)");
+}
 
-  // A rank-deficient system (two equal columns) is reported by every variant.
-  System deficient = systems.back();
+// A rank-deficient system (two equal columns) is reported by every variant.
+static void test_rank_deficient_reported()
+{
+  const bool has_avx = processor_has_avx(), has_fma = processor_has_fma();
+  System deficient = random_systems().back();
   deficient.M.col(3) = deficient.M.col(1);
   std::vector<double> c;
   bool reported = !solve(&WI::householder_kernel, deficient, c) && !solve(&WI::householder_least_squares, deficient, c);
   if(has_avx) reported = reported && !solve(&WI::householder_avx, deficient, c);
   if(has_fma) reported = reported && !solve(&WI::householder_fma, deficient, c);
-  check(reported, "a rank-deficient system is reported by every variant");
-  const std::string mode = argc > 1 ? argv[1] : "";
-  if(argc == 3 && (mode == "--write" || mode == "--compare"))
-    baseline_file(systems, mode, argv[2]);
-  else
-    check(argc == 1, "arguments: none, or --write FILE, or --compare FILE");
+  check_printed(reported, "a rank-deficient system is reported by every variant");
+}
 
-  std::cout << checks - failures << " passed, " << failures << " failed" << std::endl;
-  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+/// Writes (`write`) or compares the baseline solutions, as exact hexadecimal doubles.
+static void baseline_file(const std::vector<System>& systems, const std::string& mode, const std::string& path)
+{
+  std::vector<double> all, c;
+  for(const System& s : systems)
+  {
+    solve(&WI::householder_kernel, s, c);
+    all.insert(all.end(), c.begin(), c.end());
+  }
+  if(mode == "--write")
+  {
+    std::ofstream out(path);
+    char b[64];
+    for(double x : all) { std::snprintf(b, sizeof b, "%a\n", x); out << b; }
+    check_printed(bool(out), "baseline solutions written to " + path);
+    return;
+  }
+  std::ifstream in(path);
+  std::vector<double> reference;
+  std::string line;
+  while(std::getline(in, line)) reference.push_back(std::strtod(line.c_str(), nullptr));
+  std::size_t same = 0;
+  for(std::size_t i = 0; i < all.size() && i < reference.size(); ++i)
+    same += std::memcmp(&all[i], &reference[i], sizeof(double)) == 0;
+  check_printed(reference.size() == all.size() && same == all.size(),
+        std::string(CGAL_WAVEJETS_FOUR_LANES) + " build vs " + path + ": " + std::to_string(same) + " of " +
+          std::to_string(reference.size()) + " baseline values bitwise equal");
+}
+
+// The baseline kernel's solutions, bit for bit, across the two builds of this file: CTest runs the
+// vector-extension build with WAVEJETS_SIMD_BASELINE_WRITE=FILE and the portable build
+// (test_simd_kernels_portable, CGAL_WAVEJETS_NO_VECTOR_EXTENSIONS) with WAVEJETS_SIMD_BASELINE_COMPARE=FILE.
+static void test_portable_build_bitwise()
+{
+  const char* write = std::getenv("WAVEJETS_SIMD_BASELINE_WRITE");
+  const char* compare = std::getenv("WAVEJETS_SIMD_BASELINE_COMPARE");
+  if(write && *write) baseline_file(random_systems(), "--write", write);
+  else if(compare && *compare) baseline_file(random_systems(), "--compare", compare);
+  else std::cout << "[SKIP] neither WAVEJETS_SIMD_BASELINE_WRITE nor WAVEJETS_SIMD_BASELINE_COMPARE is set" << std::endl;
+}
+
+int main(int argc, char** argv)
+{
+  return wavejets_test::run_cases(argc, argv, {
+    Case{"kernels.full_rank_agreement", test_full_rank_agreement},
+    Case{"kernels.rank_deficient_reported", test_rank_deficient_reported},
+    Case{"kernels.portable_build_bitwise", test_portable_build_bitwise},
+  });
 }

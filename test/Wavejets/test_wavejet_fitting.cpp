@@ -2,8 +2,9 @@
 // Monge_via_jet_fitting, invariances, stability of the tangent-plane correction, and the
 // adaptive order / failure states. See WAVEJETS_MATH.md for the conventions tested here.
 //
-// Every check is an explicit `if` (through Tester::check): a failure is printed and counted,
-// and main() returns EXIT_FAILURE if any check failed. Random inputs come from fixed seeds.
+// Every check is an explicit `if` (through wavejets_test::check): a failure is printed and
+// counted, and main() returns EXIT_FAILURE if any check failed; the argument runs one case or
+// group. Random inputs come from fixed seeds.
 // Expected values are analytic (or come from CGAL for the cross-check); nothing is computed
 // with the package's internals.
 
@@ -31,6 +32,9 @@
 #include <type_traits>
 #include <utility>
 #include <vector>
+
+#include "analytic_surfaces.h"
+#include "wavejets_test_support.h"
 
 typedef CGAL::Exact_predicates_inexact_constructions_kernel EK;
 typedef CGAL::Simple_cartesian<double> SC;
@@ -62,6 +66,9 @@ static_assert(std::is_same<CGAL::Wavejet_fitting<SC>::Wavejet_form::Complex,
 namespace {
 
 const double PI = 3.14159265358979323846;
+using wavejets_test::begin_section;
+using wavejets_test::check;
+using wavejets_test::end_section;
 
 // ---------------------------------------------------------------------------------------------
 // Reporting
@@ -74,34 +81,6 @@ std::string str(const A&... a)
   (o << ... << a);
   return o.str();
 }
-
-struct Tester
-{
-  int total_failures = 0, group_checks = 0, group_failures = 0;
-  std::string name;
-  void begin(const std::string& n)
-  {
-    name = n;
-    group_checks = group_failures = 0;
-    std::cout << "== " << n << std::endl;
-  }
-  bool check(bool ok, const std::string& what)
-  {
-    ++group_checks;
-    if(!ok)
-    {
-      ++group_failures;
-      ++total_failures;
-      if(group_failures <= 25) std::cout << "  FAIL: " << what << std::endl;
-    }
-    return ok;
-  }
-  void end()
-  {
-    std::cout << (group_failures ? "[FAIL] " : "[ OK ] ") << name << ": " << group_checks << " checks, "
-              << group_failures << " failed" << std::endl;
-  }
-};
 
 // |a - b| / max(|a|, |b|, floor); infinite if either is not finite.
 double rel_err(double a, double b, double floor)
@@ -251,35 +230,29 @@ std::vector<Point> sample_graph(const Local_frame& F, const std::function<double
   return pts;
 }
 
-// Torus ((R0 + r0 cos psi) cos phi, (R0 + r0 cos psi) sin phi, r0 sin psi), placed by (Rot, T).
+// Torus ((R0 + r0 cos psi) cos phi, (R0 + r0 cos psi) sin phi, r0 sin psi), placed by (Rot, T);
+// its exact quantities are those of Parametric_torus (support/analytic_surfaces.h).
 struct Torus
 {
   double R0 = 3, r0 = 1;
   Matrix3d Rot = Matrix3d::Identity();
   Vector3d T = Vector3d::Zero();
-  Vector3d point(double phi, double psi) const
-  {
-    const double w = R0 + r0 * std::cos(psi);
-    return Rot * Vector3d(w * std::cos(phi), w * std::sin(phi), r0 * std::sin(psi)) + T;
-  }
-  Vector3d outward_normal(double phi, double psi) const
-  {
-    return Rot * Vector3d(std::cos(psi) * std::cos(phi), std::cos(psi) * std::sin(phi), std::sin(psi));
-  }
-  // Curvatures w.r.t. the outward normal (the torus bends away from it): along the meridian
-  // (psi direction) -1/r0, along the parallel (phi direction) -cos psi / (R0 + r0 cos psi).
+  wavejets_bench::Parametric_torus shape() const { return wavejets_bench::Parametric_torus{R0, r0}; }
+  Vector3d point(double phi, double psi) const { return Rot * shape().point(phi, psi) + T; }
+  Vector3d outward_normal(double phi, double psi) const { return Rot * shape().outward_normal(phi, psi); }
   Truth truth(double phi, double psi) const
   {
+    const wavejets_bench::Parametric_torus S = shape();
     Truth t;
-    const double kpar = -std::cos(psi) / (R0 + r0 * std::cos(psi)), kmer = -1. / r0;
-    const Vector3d dphi = Rot * Vector3d(-std::sin(phi), std::cos(phi), 0);
-    const Vector3d dpsi = Rot * Vector3d(-std::sin(psi) * std::cos(phi), -std::sin(psi) * std::sin(phi), std::cos(psi));
+    const double kpar = S.parallel_curvature(psi), kmer = S.meridian_curvature();
+    const Vector3d dphi = Rot * S.parallel_direction(phi);
+    const Vector3d dpsi = Rot * S.meridian_direction(phi, psi);
     t.k1 = (std::max)(kpar, kmer);
     t.k2 = (std::min)(kpar, kmer);
     t.d1 = kpar >= kmer ? dphi : dpsi;
     t.d2 = kpar >= kmer ? dpsi : dphi;
-    t.H = 0.5 * (kpar + kmer);
-    t.K = kpar * kmer;
+    t.H = S.mean_curvature(psi);
+    t.K = S.gaussian_curvature(psi);
     t.normal = outward_normal(phi, psi);
     return t;
   }
@@ -334,6 +307,17 @@ struct Kitten
   }
 };
 
+/// data/kitten.xyz, read once (empty if it cannot be read: the cases that need it check that).
+const Kitten& kitten()
+{
+  static const Kitten k = [] {
+    Kitten kt;
+    if(!kt.load("data/kitten.xyz")) std::cout << "cannot read data/kitten.xyz" << std::endl;
+    return kt;
+  }();
+  return k;
+}
+
 std::size_t nb_coeffs(std::size_t K) { return (K + 1) * (K + 2) / 2; }
 
 // Rescaled magnitude |f_{k,n}| Rf^{k-1} (heights over the unit disk).
@@ -386,9 +370,9 @@ double curv_abs_err(const Curv4& a, const Curv4& b)
 // ---------------------------------------------------------------------------------------------
 // 1. Exact recovery of polynomial height fields
 
-void test_exact_recovery(Tester& T)
+void test_exact_recovery()
 {
-  T.begin("1. exact recovery of polynomial height fields, K = 2..6 (SEED_FRAME, exact normal)");
+  begin_section("1. exact recovery of polynomial height fields, K = 2..6 (SEED_FRAME, exact normal)");
   typedef CGAL::Wavejet_fitting<SC> SC_fitting;
   std::mt19937_64 rng(1234);
   std::uniform_real_distribution<double> U(-1, 1);
@@ -425,7 +409,7 @@ void test_exact_recovery(Tester& T)
       SC_fitting fitting(opt);
       const auto form = fitting(pts.begin(), pts.end(), std::size_t(K), SC::Vector_3(F.n.x(), F.n.y(), F.n.z()));
       const std::string tag = str("K=", K, " case ", cas, ": ");
-      if(!T.check(form.is_valid() && form.order() == std::size_t(K), tag + "fit failed or order lowered")) continue;
+      if(!check(form.is_valid() && form.order() == std::size_t(K), tag + "fit failed or order lowered")) continue;
 
       const double Rf = form.radius();
       const Truth truth = graph_truth(c[1][0], c[0][1], 2 * c[2][0], c[1][1], 2 * c[0][2], F.u, F.v, F.n);
@@ -438,7 +422,7 @@ void test_exact_recovery(Tester& T)
       for(int i = 0; i < 4; ++i)
       {
         max_curv_err = (std::max)(max_curv_err, e[i]);
-        T.check(e[i] <= tol, tag + str("curvature #", i, " rel err ", e[i]));
+        check(e[i] <= tol, tag + str("curvature #", i, " rel err ", e[i]));
       }
       // principal directions (when not umbilic)
       if(truth.k1 - truth.k2 > 1e-3 * kscale)
@@ -446,13 +430,13 @@ void test_exact_recovery(Tester& T)
         const double a1 = line_angle(E(form.maximal_principal_direction()), truth.d1);
         const double a2 = line_angle(E(form.minimal_principal_direction()), truth.d2);
         max_dir_err = (std::max)({max_dir_err, a1, a2});
-        T.check(a1 <= tol && a2 <= tol, tag + str("principal directions off by ", a1, ", ", a2));
+        check(a1 <= tol && a2 <= tol, tag + str("principal directions off by ", a1, ", ", a2));
       }
       if(cas == 2) continue; // the final frame is the corrected one: coefficients are not exact there
 
       // Frame: n is the seed normal; theta = 0 along u at angle phi from the frame's x axis.
       const Vector3d u = E(form.first_tangent_direction()), fn = E(form.frame_normal_direction());
-      T.check((fn - F.n).norm() <= tol && std::abs(u.dot(F.n)) <= tol && std::abs(u.norm() - 1) <= tol,
+      check((fn - F.n).norm() <= tol && std::abs(u.dot(F.n)) <= tol && std::abs(u.norm() - 1) <= tol,
               tag + "frame normal is not the seed normal");
       const double phi = std::atan2(u.dot(F.v), u.dot(F.u));
       const std::vector<std::vector<cplx>> g = monomials_to_wavejet(c, K);
@@ -474,29 +458,29 @@ void test_exact_recovery(Tester& T)
           const cplx f = form.coefficient(k, n);
           const double err = std::abs(f - expected) / (std::max)(std::abs(expected), floor);
           max_coef_err = (std::max)(max_coef_err, std::isfinite(err) ? err : 1e300);
-          T.check(err <= tol, tag + str("f(", k, ",", n, ") = ", f, " expected ", expected, " rel err ", err));
+          check(err <= tol, tag + str("f(", k, ",", n, ") = ", f, " expected ", expected, " rel err ", err));
         }
-        if(k >= 1) T.check(form.coefficient(k, k - 1) == cplx(0, 0), tag + "parity-mismatched coefficient not 0");
+        if(k >= 1) check(form.coefficient(k, k - 1) == cplx(0, 0), tag + "parity-mismatched coefficient not 0");
       }
-      T.check(form.coefficient(K + 1, K + 1) == cplx(0, 0) && form.coefficient(K, K + 2) == cplx(0, 0),
+      check(form.coefficient(K + 1, K + 1) == cplx(0, 0) && form.coefficient(K, K + 2) == cplx(0, 0),
               tag + "out-of-range coefficient not 0");
       // Symmetry of a real surface, and consistency of the real layout.
       for(int k = 1; k <= K; ++k)
         for(int n = 1; n <= k; ++n)
           if((k - n) % 2 == 0)
-            T.check(form.coefficient(k, -n) == std::conj(form.coefficient(k, n)), tag + "f(k,-n) != conj f(k,n)");
+            check(form.coefficient(k, -n) == std::conj(form.coefficient(k, n)), tag + "f(k,-n) != conj f(k,n)");
     }
   std::cout << "  max relative error: coefficients " << max_coef_err << ", curvatures " << max_curv_err
             << ", principal directions (sin angle) " << max_dir_err << std::endl;
-  T.end();
+  end_section();
 }
 
 // ---------------------------------------------------------------------------------------------
 // 2. Analytic surfaces, default options
 
-void test_analytic_surfaces(Tester& T)
+void test_analytic_surfaces()
 {
-  T.begin("2. analytic surfaces, default options (correction on)");
+  begin_section("2. analytic surfaces, default options (correction on)");
   std::mt19937_64 rng(42);
   Fitting fitting; // default options
   const int K = 4;
@@ -522,19 +506,19 @@ void test_analytic_surfaces(Tester& T)
                 << " (exact " << sgn / R << ") K=" << c.K << " k1=" << c.k1 << " k2=" << c.k2
                 << "; |error| H " << std::abs(c.H - sgn / R) << " K " << std::abs(c.K - 1 / (R * R)) << " k1 "
                 << std::abs(c.k1 - sgn / R) << " k2 " << std::abs(c.k2 - sgn / R) << " (tol " << tol << ")" << std::endl;
-      T.check(f.is_valid() && f.order() == std::size_t(K), "sphere: fit failed");
-      T.check(std::abs(c.H - sgn / R) <= tol && std::abs(c.k1 - sgn / R) <= tol && std::abs(c.k2 - sgn / R) <= tol,
+      check(f.is_valid() && f.order() == std::size_t(K), "sphere: fit failed");
+      check(std::abs(c.H - sgn / R) <= tol && std::abs(c.k1 - sgn / R) <= tol && std::abs(c.k2 - sgn / R) <= tol,
               str("sphere: H/k1/k2 ", c.H, " ", c.k1, " ", c.k2, " vs ", sgn / R, " tol ", tol));
-      T.check(std::abs(c.K - 1 / (R * R)) <= 2 * tol / R, str("sphere: K_G ", c.K));
-      T.check(E(f.normal_direction()).dot(given) > 0 && line_angle(E(f.normal_direction()), F.n) <= (h / R) * tol * R,
+      check(std::abs(c.K - 1 / (R * R)) <= 2 * tol / R, str("sphere: K_G ", c.K));
+      check(E(f.normal_direction()).dot(given) > 0 && line_angle(E(f.normal_direction()), F.n) <= (h / R) * tol * R,
               "sphere: normal not oriented like the given normal or inaccurate");
       // a_0(s) in the tangent frame: (1/2pi) x signed volume between surface and plane over the disc s.
       const double s = h;
       const double a0_exact = sgn * -(-R * s * s / 2 + (R * R * R - std::pow(R * R - s * s, 1.5)) / 3);
       const double a0 = f.enclosed_area_coefficient(0, s).real();
       std::cout << "    a0(" << s << ") = " << a0 << " (exact " << a0_exact << ")" << std::endl;
-      T.check((orient == 0 ? a0 < 0 : a0 > 0), "sphere: sign of a0(s)");
-      T.check(std::abs(a0 - a0_exact) <= std::abs(a0_exact) * tol * R, str("sphere: a0(s) ", a0, " vs ", a0_exact));
+      check((orient == 0 ? a0 < 0 : a0 > 0), "sphere: sign of a0(s)");
+      check(std::abs(a0 - a0_exact) <= std::abs(a0_exact) * tol * R, str("sphere: a0(s) ", a0, " vs ", a0_exact));
     }
   }
   {
@@ -550,14 +534,14 @@ void test_analytic_surfaces(Tester& T)
     const double a2 = line_angle(E(f.minimal_principal_direction()), F.u);
     std::cout << "  cylinder R=" << R << ": H=" << c.H << " K=" << c.K << " k1=" << c.k1 << " k2=" << c.k2
               << " dir errors " << a1 << " " << a2 << std::endl;
-    T.check(f.is_valid(), "cylinder: fit failed");
-    T.check(std::abs(c.k1) <= tol && std::abs(c.k2 + 1 / R) <= tol && std::abs(c.H + 0.5 / R) <= tol &&
+    check(f.is_valid(), "cylinder: fit failed");
+    check(std::abs(c.k1) <= tol && std::abs(c.k2 + 1 / R) <= tol && std::abs(c.H + 0.5 / R) <= tol &&
               std::abs(c.K) <= tol / R,
             "cylinder: curvatures");
     // principal directions: eigenvectors, perturbation <= curvature error / (k1 - k2)
-    T.check(a1 <= tol * R && a2 <= tol * R, "cylinder: principal directions (max along the axis)");
+    check(a1 <= tol * R && a2 <= tol * R, "cylinder: principal directions (max along the axis)");
     const Vector3d d1 = E(f.maximal_principal_direction()), d2 = E(f.minimal_principal_direction());
-    T.check(std::abs(d1.cross(d2).dot(E(f.normal_direction())) - 1) <= 1e-12, "cylinder: (d1, d2, n) not direct");
+    check(std::abs(d1.cross(d2).dot(E(f.normal_direction())) - 1) <= 1e-12, "cylinder: (d1, d2, n) not direct");
   }
   {
     // Paraboloid z = a x^2 + b y^2 and saddle z = a (x^2 - y^2): polynomial, but the PCA frame is
@@ -578,12 +562,12 @@ void test_analytic_surfaces(Tester& T)
       const double a2 = line_angle(E(f.minimal_principal_direction()), e2);
       std::cout << "  " << q.name << ": H=" << c.H << " (" << q.a + q.b << ") K=" << c.K << " (" << 4 * q.a * q.b
                 << ") k1=" << c.k1 << " k2=" << c.k2 << " dir errors " << a1 << " " << a2 << std::endl;
-      T.check(f.is_valid(), str(q.name, ": fit failed"));
-      T.check(std::abs(c.H - (q.a + q.b)) <= tol && std::abs(c.k1 - k1) <= tol && std::abs(c.k2 - k2) <= tol &&
+      check(f.is_valid(), str(q.name, ": fit failed"));
+      check(std::abs(c.H - (q.a + q.b)) <= tol && std::abs(c.k1 - k1) <= tol && std::abs(c.k2 - k2) <= tol &&
                 std::abs(c.K - 4 * q.a * q.b) <= 2 * tol / rho,
               str(q.name, ": curvatures"));
       // an eigenvector moves by about (curvature error) / (gap k1 - k2)
-      T.check(a1 <= tol / (k1 - k2) && a2 <= tol / (k1 - k2), str(q.name, ": principal directions"));
+      check(a1 <= tol / (k1 - k2) && a2 <= tol / (k1 - k2), str(q.name, ": principal directions"));
     }
   }
   {
@@ -604,14 +588,14 @@ void test_analytic_surfaces(Tester& T)
     std::cout << "  monkey saddle: H=" << c.H << " K=" << c.K << " |f33|=" << f33 << " |f31|=" << f31
               << " f33 in the sampling frame " << f33_in_F << std::endl;
     const double tol = 1e-9, scale = 6 * h; // |Hessian| at distance h
-    T.check(f.is_valid() && f.order() == 3, "monkey saddle: fit failed");
-    T.check(std::abs(c.H) <= tol * scale && std::abs(c.K) <= tol * scale * scale && std::abs(c.k1) <= tol * scale,
+    check(f.is_valid() && f.order() == 3, "monkey saddle: fit failed");
+    check(std::abs(c.H) <= tol * scale && std::abs(c.K) <= tol * scale * scale && std::abs(c.k1) <= tol * scale,
             "monkey saddle: H, K_G not 0");
-    T.check(std::abs(f33 - 0.5) <= tol && f31 <= tol && std::abs(f.coefficient(2, 0)) <= tol * scale &&
+    check(std::abs(f33 - 0.5) <= tol && f31 <= tol && std::abs(f.coefficient(2, 0)) <= tol * scale &&
               std::abs(f.coefficient(2, 2)) <= tol * scale,
             "monkey saddle: coefficients");
-    T.check(std::abs(f33_in_F - cplx(0.5, 0)) <= tol, "monkey saddle: phase of f_{3,3}");
-    T.check(std::abs(f.enclosed_area_coefficient(3, h)) > 0.9 * 0.5 * std::pow(h, 5) / 5 &&
+    check(std::abs(f33_in_F - cplx(0.5, 0)) <= tol, "monkey saddle: phase of f_{3,3}");
+    check(std::abs(f.enclosed_area_coefficient(3, h)) > 0.9 * 0.5 * std::pow(h, 5) / 5 &&
               std::abs(f.enclosed_area_coefficient(0, h)) <= tol * std::pow(h, 5),
             "monkey saddle: a_3(s), a_0(s)");
   }
@@ -628,10 +612,10 @@ void test_analytic_surfaces(Tester& T)
     std::cout << "  x^4+y^4: H=" << c.H << " K=" << c.K << " a0(" << h << ")=" << a0 << " (exact " << a0_exact
               << ") |f40|=" << std::abs(f.coefficient(4, 0)) << " |f44|=" << std::abs(f.coefficient(4, 4)) << std::endl;
     const double tol = 1e-9, scale = 12 * h * h; // |Hessian| at distance h
-    T.check(f.is_valid() && f.order() == std::size_t(K), "x^4+y^4: fit failed");
-    T.check(std::abs(c.H) <= tol * scale && std::abs(c.K) <= tol * scale * scale, "x^4+y^4: H, K_G not 0");
-    T.check(a0 > 0 && std::abs(a0 - a0_exact) <= tol * a0_exact, str("x^4+y^4: a0(s) ", a0, " vs ", a0_exact));
-    T.check(std::abs(f.coefficient(4, 0).real() - 0.75) <= tol && std::abs(std::abs(f.coefficient(4, 4)) - 0.125) <= tol,
+    check(f.is_valid() && f.order() == std::size_t(K), "x^4+y^4: fit failed");
+    check(std::abs(c.H) <= tol * scale && std::abs(c.K) <= tol * scale * scale, "x^4+y^4: H, K_G not 0");
+    check(a0 > 0 && std::abs(a0 - a0_exact) <= tol * a0_exact, str("x^4+y^4: a0(s) ", a0, " vs ", a0_exact));
+    check(std::abs(f.coefficient(4, 0).real() - 0.75) <= tol && std::abs(std::abs(f.coefficient(4, 4)) - 0.125) <= tol,
             "x^4+y^4: f_{4,0}, |f_{4,4}|");
   }
   {
@@ -650,28 +634,28 @@ void test_analytic_surfaces(Tester& T)
     f.comply_wrt_given_normal(V(-truth.normal));
     const Curv4 a = curv(f), b = curv(g), a0 = curv(f_before);
     const double tol = 1e-10, cs = 1 / tor.r0;
-    T.check(a0.H < 0 && a.H == -a0.H && a.k1 == -a0.k2 && a.k2 == -a0.k1,
+    check(a0.H < 0 && a.H == -a0.H && a.k1 == -a0.k2 && a.k2 == -a0.k1,
             "comply_wrt_given_normal: curvature signs");
-    T.check(rel_err(a.H, b.H, cs) <= tol && rel_err(a.K, b.K, cs * cs) <= tol && rel_err(a.k1, b.k1, cs) <= tol &&
+    check(rel_err(a.H, b.H, cs) <= tol && rel_err(a.K, b.K, cs * cs) <= tol && rel_err(a.k1, b.k1, cs) <= tol &&
               rel_err(a.k2, b.k2, cs) <= tol,
             "comply_wrt_given_normal: curvatures differ from the fit oriented by -N");
-    T.check((E(f.normal_direction()) - E(g.normal_direction())).norm() <= tol &&
+    check((E(f.normal_direction()) - E(g.normal_direction())).norm() <= tol &&
               (E(f.second_tangent_direction()) - E(g.second_tangent_direction())).norm() <= tol &&
               (E(f.first_tangent_direction()) - E(g.first_tangent_direction())).norm() <= tol,
             "comply_wrt_given_normal: frame differs from the fit oriented by -N");
-    T.check(line_angle(E(f.maximal_principal_direction()), E(g.maximal_principal_direction())) <= 1e-8 &&
+    check(line_angle(E(f.maximal_principal_direction()), E(g.maximal_principal_direction())) <= 1e-8 &&
               line_angle(E(f.maximal_principal_direction()), E(f_before.minimal_principal_direction())) == 0,
             "comply_wrt_given_normal: principal directions");
     const double Rf = f.radius();
     for(int k = 0; k <= K; ++k)
       for(int n = -k; n <= k; n += 2)
       {
-        T.check(std::abs(f.coefficient(k, n) - g.coefficient(k, n)) * std::pow(Rf, k - 1) <= tol,
+        check(std::abs(f.coefficient(k, n) - g.coefficient(k, n)) * std::pow(Rf, k - 1) <= tol,
                 str("comply_wrt_given_normal: f(", k, ",", n, ") ", f.coefficient(k, n), " vs ", g.coefficient(k, n)));
-        T.check(f.coefficient(k, n) == -std::conj(f_before.coefficient(k, n)), "comply_wrt_given_normal: -conj");
+        check(f.coefficient(k, n) == -std::conj(f_before.coefficient(k, n)), "comply_wrt_given_normal: -conj");
       }
   }
-  T.end();
+  end_section();
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -687,9 +671,9 @@ struct Graph_surface
   double x0, y0; // the query point's (x, y): off the vertex, so the graph has terms of every degree
 };
 
-void test_convergence(Tester& T)
+void test_convergence()
 {
-  T.begin("2b. convergence rate of the curvature error, h, h/2, h/4, orders 2..5");
+  begin_section("2b. convergence rate of the curvature error, h, h/2, h/4, orders 2..5");
   // For a fit of order K on samples of a smooth surface over a disc of radius h, the first term
   // the fit cannot represent has degree K+1: it perturbs the fitted second derivatives, hence the
   // curvatures, by O(h^{K-1}) (WAVEJETS_MATH.md section 2; the same argument as for jets).
@@ -785,7 +769,7 @@ void test_convergence(Tester& T)
           {
             Fitting fitting(m == 0 ? Fitting_options() : topt);
             const Form f = fitting(pts.begin(), pts.end(), std::size_t(K), V(truth.normal));
-            T.check(f.is_valid() && f.order() == std::size_t(K), name + str(" K=", K, ": fit failed or order lowered"));
+            check(f.is_valid() && f.order() == std::size_t(K), name + str(" K=", K, ": fit failed or order lowered"));
             const double e = curv_abs_err(curv(f), curv(truth));
             err[m][i] += e * e / npat;
           }
@@ -799,7 +783,7 @@ void test_convergence(Tester& T)
         std::cout << "  " << name << (m == 0 ? " default" : " TANGENT_FRAME") << " K=" << K << ": RMS error " << err[m][0]
                   << ", " << err[m][1] << ", " << err[m][2] << " at h=" << h0 << ", h/2, h/4; observed order " << p1
                   << ", " << p2 << " (theory >= " << K - 1 << ")" << std::endl;
-        T.check(p1 >= K - 1 - slack[0] && p2 >= K - 1 - slack[1],
+        check(p1 >= K - 1 - slack[0] && p2 >= K - 1 - slack[1],
                 str(name, m == 0 ? " default" : " TANGENT_FRAME", " K=", K, ": observed order ", p1, ", ", p2,
                     " < K - 1 - ", slack[0], ", K - 1 - ", slack[1]));
       }
@@ -807,15 +791,15 @@ void test_convergence(Tester& T)
   }
   std::cout << "  smallest margin p - (K - 1 - slack): default " << worst_margin[0] << ", TANGENT_FRAME "
             << worst_margin[1] << " (must be >= 0)" << std::endl;
-  T.end();
+  end_section();
 }
 
 // ---------------------------------------------------------------------------------------------
 // 3. Cross-check with CGAL::Monge_via_jet_fitting
 
-void test_cgal_cross_check(Tester& T, const Kitten& kitten)
+void test_cgal_cross_check(const Kitten& kitten)
 {
-  T.begin("3. cross-check with CGAL::Monge_via_jet_fitting, degrees 2..6");
+  begin_section("3. cross-check with CGAL::Monge_via_jet_fitting, degrees 2..6");
   const double tol = 1e-8;
   auto compare = [&](const std::vector<Point>& pts, std::size_t d, double scale, const std::string& tag, double& max_err,
                      double& max_dir) {
@@ -825,7 +809,7 @@ void test_cgal_cross_check(Tester& T, const Kitten& kitten)
     const Form f = fitting(pts.begin(), pts.end(), d);
     Monge monge;
     Monge_form m = monge(pts.begin(), pts.end(), d, 2);
-    if(!T.check(f.is_valid() && f.order() == d, tag + "Wavejet fit failed or order lowered")) return;
+    if(!check(f.is_valid() && f.order() == d, tag + "Wavejet fit failed or order lowered")) return;
     m.comply_wrt_given_normal(f.normal_direction());
     const Curv4 a = curv(f), b = curv(m);
     // Floor: curvatures that are nearly 0 are differences of terms of size ~scale (the curvature
@@ -838,10 +822,10 @@ void test_cgal_cross_check(Tester& T, const Kitten& kitten)
     for(int i = 0; i < 4; ++i)
     {
       max_err = (std::max)(max_err, e[i]);
-      T.check(e[i] <= tol, tag + str("curvature #", i, ": wavejet ", (i == 0 ? a.H : i == 1 ? a.K : i == 2 ? a.k1 : a.k2),
+      check(e[i] <= tol, tag + str("curvature #", i, ": wavejet ", (i == 0 ? a.H : i == 1 ? a.K : i == 2 ? a.k1 : a.k2),
                                      " cgal ", (i == 0 ? b.H : i == 1 ? b.K : i == 2 ? b.k1 : b.k2), " rel err ", e[i]));
     }
-    T.check(line_angle(E(f.normal_direction()), E(m.normal_direction())) <= tol, tag + "normals differ");
+    check(line_angle(E(f.normal_direction()), E(m.normal_direction())) <= tol, tag + "normals differ");
     // Principal directions: an eigenvector moves by about (eigenvalue error) / (eigenvalue gap).
     const double gap = a.k1 - a.k2;
     if(gap > fl)
@@ -849,11 +833,11 @@ void test_cgal_cross_check(Tester& T, const Kitten& kitten)
       const double ang = (std::max)(line_angle(E(f.maximal_principal_direction()), E(m.maximal_principal_direction())),
                                     line_angle(E(f.minimal_principal_direction()), E(m.minimal_principal_direction())));
       max_dir = (std::max)(max_dir, ang * gap / kmax);
-      T.check(ang <= tol * kmax / gap, tag + str("principal directions differ by ", ang));
+      check(ang <= tol * kmax / gap, tag + str("principal directions differ by ", ang));
     }
   };
 
-  if(T.check(!kitten.pts.empty(), "data/kitten.xyz not loaded"))
+  if(check(!kitten.pts.empty(), "data/kitten.xyz not loaded"))
   {
     const double scale = 1 / kitten.spacing;
     std::cout << "  kitten: " << kitten.pts.size() << " points, average spacing " << kitten.spacing << std::endl;
@@ -956,14 +940,14 @@ void test_cgal_cross_check(Tester& T, const Kitten& kitten)
           rms_tan += et * et;
           rms_ncgal += nc * nc;
           rms_nwj += nw * nw;
-          T.check(f.is_valid() && ft.is_valid(), "fit failed");
-          T.check(ft.number_of_corrections() >= 1, "TANGENT_FRAME: no re-fit was accepted");
+          check(f.is_valid() && ft.is_valid(), "fit failed");
+          check(ft.number_of_corrections() >= 1, "TANGENT_FRAME: no re-fit was accepted");
           // (a) consistency: equal to CGAL's error up to rounding (same problem, see the cross-check above)
-          T.check(ew <= ec + 1e-8 * std::abs(truth.k2),
+          check(ew <= ec + 1e-8 * std::abs(truth.k2),
                   str(s ? "torus" : "sphere", " d=", d, ": default (INITIAL_FRAME, CGAL's problem) error ", ew,
                       " != CGAL error ", ec));
           // by design, TANGENT_FRAME changes only where the curvature is read from
-          T.check(ft.order() == f.order() && ft.coefficients() == f.coefficients() &&
+          check(ft.order() == f.order() && ft.coefficients() == f.coefficients() &&
                     E(ft.normal_direction()) == E(f.normal_direction()),
                   "TANGENT_FRAME changed the fit itself");
           if(curv_abs_err(curv(ft), curv(f)) > 1e-10 * std::abs(truth.k2)) ++differs;
@@ -978,26 +962,26 @@ void test_cgal_cross_check(Tester& T, const Kitten& kitten)
                   << " samples differ from the default); RMS normal angle: CGAL " << ncgal << ", wavejet corrected "
                   << nwj << " (ratio " << nwj / ncgal << ")" << std::endl;
         // (b)
-        T.check(tan <= curvature_factor * cgal,
+        check(tan <= curvature_factor * cgal,
                 tag + str(": TANGENT_FRAME RMS curvature error ", tan, " > ", curvature_factor, " x CGAL's ", cgal));
-        T.check(differs >= M / 2, tag + str(": TANGENT_FRAME curvature differs from the default on only ", differs, "/", M));
+        check(differs >= M / 2, tag + str(": TANGENT_FRAME curvature differs from the default on only ", differs, "/", M));
         // (c)
-        T.check(nwj <= normal_factor * ncgal,
+        check(nwj <= normal_factor * ncgal,
                 tag + str(": corrected normal RMS error ", nwj, " > ", normal_factor, " x CGAL's ", ncgal));
       }
     std::cout << "  worst ratio to CGAL: TANGENT_FRAME curvature " << worst_curv_ratio << " (bound " << curvature_factor
               << "), corrected normal " << worst_normal_ratio << " (bound " << normal_factor << ")" << std::endl;
   }
-  T.end();
+  end_section();
 }
 
 // ---------------------------------------------------------------------------------------------
 // 4. Invariances
 
-void test_invariances(Tester& T, const Kitten& kitten)
+void test_invariances(const Kitten& kitten)
 {
-  T.begin("4. invariances: translation, rotation, scaling, permutation, phase");
-  if(!T.check(!kitten.pts.empty(), "data/kitten.xyz not loaded")) { T.end(); return; }
+  begin_section("4. invariances: translation, rotation, scaling, permutation, phase");
+  if(!check(!kitten.pts.empty(), "data/kitten.xyz not loaded")) { end_section(); return; }
   std::mt19937_64 rng(2024);
   const std::size_t K = 4, k = 40;
   const double ulp_offset = std::nextafter(1e6, 2e6) - 1e6;
@@ -1013,7 +997,7 @@ void test_invariances(Tester& T, const Kitten& kitten)
     // unoriented forms may legitimately differ by comply_wrt_given_normal (H -> -H).
     Fitting fitting;
     const Form f = fitting(pts.begin(), pts.end(), K);
-    if(!T.check(f.is_valid() && f.order() == K, "reference fit failed")) continue;
+    if(!check(f.is_valid() && f.order() == K, "reference fit failed")) continue;
     const Vector nref = f.normal_direction();
     const double Rf = f.radius();
     const Curv4 c = curv(f);
@@ -1023,7 +1007,7 @@ void test_invariances(Tester& T, const Kitten& kitten)
     // is the curvature scale the fit resolves), coefficients are compared rescaled by Rf (heights
     // over the unit disk, where 1 is the natural scale). Returns the worst error / tol.
     auto compare = [&](const Form& g, double s, double tol, const std::string& tag) {
-      if(!T.check(g.is_valid() && g.order() == K, tag + "fit failed")) return 0.;
+      if(!check(g.is_valid() && g.order() == K, tag + "fit failed")) return 0.;
       const Curv4 d = curv(g);
       const double cs = 1 / Rf;
       double w = (std::max)({rel_err(d.H * s, c.H, cs), rel_err(d.K * s * s, c.K, cs * cs), rel_err(d.k1 * s, c.k1, cs),
@@ -1032,7 +1016,7 @@ void test_invariances(Tester& T, const Kitten& kitten)
         for(int n = -kk; n <= kk; n += 2)
           w = (std::max)(w, std::abs(rescaled_abs(g, kk, n) - rescaled_abs(f, kk, n)));
       w = (std::max)(w, std::abs(g.radius() / s - Rf) / Rf);
-      T.check(w <= tol, tag + str("error ", w, " > tol ", tol));
+      check(w <= tol, tag + str("error ", w, " > tol ", tol));
       return w / tol;
     };
 
@@ -1046,8 +1030,8 @@ void test_invariances(Tester& T, const Kitten& kitten)
       const Form g = ft(moved.begin(), moved.end(), K, nref);
       const double tol = 100 * ulp_offset / Rf;
       worst[0] = (std::max)(worst[0], compare(g, 1, tol, str("translation point ", q, ": ")));
-      T.check((E(g.origin() - t - f.origin())).norm() <= 100 * ulp_offset, "translation: origin");
-      T.check(line_angle(E(g.normal_direction()), E(f.normal_direction())) <= tol, "translation: normal");
+      check((E(g.origin() - t - f.origin())).norm() <= 100 * ulp_offset, "translation: origin");
+      check(line_angle(E(g.normal_direction()), E(f.normal_direction())) <= tol, "translation: normal");
     }
     // rotation (about the world origin; the kitten lies within 0.5 of it): rounding of the rotated
     // coordinates is ~1e-16 * 0.5 / Rf relative to Rf; 1e-10 leaves room for the conditioning.
@@ -1058,12 +1042,12 @@ void test_invariances(Tester& T, const Kitten& kitten)
       const Form g = ft(moved.begin(), moved.end(), K, V(Q * E(nref)));
       const double tol = 1e-10;
       worst[1] = (std::max)(worst[1], compare(g, 1, tol, str("rotation point ", q, ": ")));
-      T.check((E(g.normal_direction()) - Q * E(f.normal_direction())).norm() <= tol, "rotation: normal");
-      T.check((E(g.origin() - CGAL::ORIGIN) - Q * E(f.origin() - CGAL::ORIGIN)).norm() <= tol * Rf, "rotation: origin");
+      check((E(g.normal_direction()) - Q * E(f.normal_direction())).norm() <= tol, "rotation: normal");
+      check((E(g.origin() - CGAL::ORIGIN) - Q * E(f.origin() - CGAL::ORIGIN)).norm() <= tol * Rf, "rotation: origin");
       // an eigenvector moves by about (eigenvalue error) / (eigenvalue gap)
       const double kmax = (std::max)({std::abs(c.k1), std::abs(c.k2), 1 / Rf});
       if(c.k1 - c.k2 > 1e-3 / Rf)
-        T.check(line_angle(E(g.maximal_principal_direction()), Q * E(f.maximal_principal_direction())) <=
+        check(line_angle(E(g.maximal_principal_direction()), Q * E(f.maximal_principal_direction())) <=
                   tol * kmax / (c.k1 - c.k2),
                 "rotation: principal direction");
     }
@@ -1078,7 +1062,7 @@ void test_invariances(Tester& T, const Kitten& kitten)
         for(int n = -kk; n <= kk; n += 2)
         {
           const double a = std::abs(g.coefficient(kk, n)), b = std::abs(f.coefficient(kk, n)) * std::pow(lambda, 1 - kk);
-          T.check(std::abs(a - b) <= 1e-10 * std::pow(Rf * lambda, 1 - kk), "scaling: |f_{k,n}| x lambda^{1-k}");
+          check(std::abs(a - b) <= 1e-10 * std::pow(Rf * lambda, 1 - kk), "scaling: |f_{k,n}| x lambda^{1-k}");
         }
     }
     // permutation of the neighbors (query stays first): only rounding changes.
@@ -1088,7 +1072,7 @@ void test_invariances(Tester& T, const Kitten& kitten)
       Fitting ft;
       const Form g = ft(moved.begin(), moved.end(), K, nref);
       worst[3] = (std::max)(worst[3], compare(g, 1, 1e-10, str("permutation point ", q, ": ")));
-      T.check((E(g.first_tangent_direction()) - E(f.first_tangent_direction())).norm() <= 1e-8 ||
+      check((E(g.first_tangent_direction()) - E(f.first_tangent_direction())).norm() <= 1e-8 ||
                 (E(g.first_tangent_direction()) + E(f.first_tangent_direction())).norm() <= 1e-8,
               "permutation: first tangent axis moved");
     }
@@ -1106,28 +1090,28 @@ void test_invariances(Tester& T, const Kitten& kitten)
       const Vector3d u = E(f.first_tangent_direction()), v = E(f.second_tangent_direction());
       const Vector3d ub = Rm.transpose() * E(g.first_tangent_direction());
       const double nu = std::atan2(ub.dot(v), ub.dot(u));
-      T.check(line_angle(Rm.transpose() * E(g.frame_normal_direction()), n) <= 1e-10, "phase: frame normal");
+      check(line_angle(Rm.transpose() * E(g.frame_normal_direction()), n) <= 1e-10, "phase: frame normal");
       double w = 0;
       for(int kk = 0; kk <= int(K); ++kk)
         for(int nn = -kk; nn <= kk; nn += 2)
           w = (std::max)(w, std::abs(g.coefficient(kk, nn) - f.coefficient(kk, nn) * std::polar(1.0, nn * nu)) *
                               std::pow(Rf, kk - 1));
       worst[4] = (std::max)(worst[4], w / 1e-10);
-      T.check(w <= 1e-10, str("phase point ", q, ": f'_{k,n} != f_{k,n} e^{i n nu}, nu = ", nu, ", error ", w));
+      check(w <= 1e-10, str("phase point ", q, ": f'_{k,n} != f_{k,n} e^{i n nu}, nu = ", nu, ", error ", w));
     }
   }
   std::cout << "  worst error / tolerance: translation " << worst[0] << " (tol 100 ulp(1e6)/Rf), rotation "
             << worst[1] << ", scaling " << worst[2] << ", permutation " << worst[3] << ", phase " << worst[4]
             << " (tol 1e-10)" << std::endl;
-  T.end();
+  end_section();
 }
 
 // ---------------------------------------------------------------------------------------------
 // 5. Stability of the corrected fit under a perturbed seed normal (paper Fig. 4)
 
-void test_stability(Tester& T)
+void test_stability()
 {
-  T.begin("5. stability under seed-normal perturbation (SEED_FRAME, 3 corrections)");
+  begin_section("5. stability under seed-normal perturbation (SEED_FRAME, 3 corrections)");
   std::mt19937_64 rng(5);
   const std::size_t K = 4;
   struct Case { const char* name; double a, b, R, h; };
@@ -1184,7 +1168,7 @@ void test_stability(Tester& T)
         const Vector3d seed = Eigen::AngleAxisd(g, axis) * F.n;
         const Form f = fitting(pts.begin(), pts.end(), K, V(seed));
         const Form fi = ifitting(pts.begin(), pts.end(), K, V(seed));
-        T.check(f.is_valid() && f.order() == K, "fit failed");
+        check(f.is_valid() && f.order() == K, "fit failed");
         const double d = (std::max)({curv_abs_err(curv(f), curv(f0)),
                                      4 * std::abs(std::abs(f.coefficient(2, 0)) - std::abs(f0.coefficient(2, 0))),
                                      8 * std::abs(std::abs(f.coefficient(2, 2)) - std::abs(f0.coefficient(2, 2)))});
@@ -1192,21 +1176,21 @@ void test_stability(Tester& T)
         worst_init = (std::max)(worst_init, curv_abs_err(curv(fi), curv(f0)));
         worst_tilt = (std::max)(worst_tilt, CGAL::to_double(f.tangent_plane_residual()));
         // within twice the reference fit error
-        T.check(d <= 2 * e0, str(cs.name, " seed tilted ", deg, " deg azimuth ", az, ": change ", d, " > 2 x fit error ", e0));
+        check(d <= 2 * e0, str(cs.name, " seed tilted ", deg, " deg azimuth ", az, ": change ", d, " > 2 x fit error ", e0));
       }
     std::cout << "  " << cs.name << ": reference fit error " << e0 << " (seeded exact: " << err_truth(f0)
               << ", default: " << err_truth(fd) << "); worst change with tilted seed: TANGENT_FRAME " << worst_tan
               << ", INITIAL_FRAME " << worst_init << "; worst residual |f11| " << worst_tilt << std::endl;
   }
-  T.end();
+  end_section();
 }
 
 // ---------------------------------------------------------------------------------------------
 // 6. Adaptive order and failure states
 
-void test_adaptive_order_and_failures(Tester& T)
+void test_adaptive_order_and_failures()
 {
-  T.begin("6. adaptive order and failure states");
+  begin_section("6. adaptive order and failure states");
   std::mt19937_64 rng(6);
   Torus tor;
   // largest K <= 6 with L >= 1.1 (K+1)(K+2)/2, in exact integer arithmetic: 10 L >= 11 B
@@ -1221,7 +1205,7 @@ void test_adaptive_order_and_failures(Tester& T)
     Fitting fitting;
     const Form f = fitting(pts.begin(), pts.end(), 6);
     std::cout << "  L=" << L << ": order " << f.order() << " (expected " << expected_order(L) << ")" << std::endl;
-    T.check(f.is_valid() && f.order() == expected_order(L) && f.number_of_points() == L,
+    check(f.is_valid() && f.order() == expected_order(L) && f.number_of_points() == L,
             str("L=", L, ": order ", f.order(), " expected ", expected_order(L)));
   }
   {
@@ -1230,21 +1214,21 @@ void test_adaptive_order_and_failures(Tester& T)
     Fitting_options opt;
     opt.neighbors_per_coefficient = 2.0; // 40 >= 2 * 15 (K=4), 40 < 2 * 21
     Fitting fitting(opt);
-    T.check(fitting(pts.begin(), pts.end(), 6).order() == 4, "beta = 2: order");
+    check(fitting(pts.begin(), pts.end(), 6).order() == 4, "beta = 2: order");
     Fitting dflt;
-    T.check(dflt(pts.begin(), pts.end(), 3).order() == 3, "requested order is an upper bound");
+    check(dflt(pts.begin(), pts.end(), 3).order() == 3, "requested order is an upper bound");
   }
 
   auto expect_failure = [&](const std::vector<Point>& pts, Fit_status st, const std::string& tag, bool origin_is_query,
                             const Vector* normal = nullptr, Fitting_options opt = Fitting_options()) {
     Fitting fitting(opt);
     const Form f = normal ? fitting(pts.begin(), pts.end(), 2, *normal) : fitting(pts.begin(), pts.end(), 2);
-    T.check(!f.is_valid() && f.status() == st, tag + str(": status '", CGAL::Wavejets::fit_status_name(f.status()),
+    check(!f.is_valid() && f.status() == st, tag + str(": status '", CGAL::Wavejets::fit_status_name(f.status()),
                                                          "' expected '", CGAL::Wavejets::fit_status_name(st), "'"));
-    T.check(f.order() == 0, tag + ": order not 0");
-    if(origin_is_query) T.check(!pts.empty() && f.origin() == pts[0], tag + ": origin is not the query point");
-    T.check(!form_has_nan(f), tag + ": NaN or infinity in the form");
-    T.check(f.coefficients().empty() || *std::max_element(f.coefficients().begin(), f.coefficients().end()) == 0,
+    check(f.order() == 0, tag + ": order not 0");
+    if(origin_is_query) check(!pts.empty() && f.origin() == pts[0], tag + ": origin is not the query point");
+    check(!form_has_nan(f), tag + ": NaN or infinity in the form");
+    check(f.coefficients().empty() || *std::max_element(f.coefficients().begin(), f.coefficients().end()) == 0,
             tag + ": coefficients not 0");
   };
   std::vector<Point> base = tor.patch(0.4, 0.9, 0.6, disk_pattern(rng, 30));
@@ -1282,19 +1266,19 @@ void test_adaptive_order_and_failures(Tester& T)
     pts[0] = Point(nan, pts[0].y(), pts[0].z());
     Fitting fitting;
     const Form f = fitting(pts.begin(), pts.end(), 2);
-    T.check(!f.is_valid() && f.status() == Fit_status::NON_FINITE_INPUT, "NaN query: status");
+    check(!f.is_valid() && f.status() == Fit_status::NON_FINITE_INPUT, "NaN query: status");
   }
   {
     // a default-constructed form is invalid and NaN-free; a planar neighborhood is fine (H = 0)
     const Form f;
-    T.check(!f.is_valid() && f.order() == 0 && !form_has_nan(f), "default form");
+    check(!f.is_valid() && f.order() == 0 && !form_has_nan(f), "default form");
     std::vector<Point> plane;
     for(const Eigen::Vector2d& q : disk_pattern(rng, 30)) plane.push_back(Point(q.x(), q.y(), 0.25 * q.x() - 0.5 * q.y()));
     Fitting fitting;
     const Form g = fitting(plane.begin(), plane.end(), 4);
-    T.check(g.is_valid() && std::abs(curv(g).H) <= 1e-12 && std::abs(curv(g).K) <= 1e-12, "planar neighborhood");
+    check(g.is_valid() && std::abs(curv(g).H) <= 1e-12 && std::abs(curv(g).K) <= 1e-12, "planar neighborhood");
   }
-  T.end();
+  end_section();
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -1317,9 +1301,68 @@ bool read_vector_after(const std::string& text, const std::string& label, Vector
   return bool(in >> v.x() >> v.y() >> v.z());
 }
 
-void test_accessors(Tester& T, const Kitten& kitten)
+// operator<<: writes the status, order, number of points, Rf, corrections, |f11| residual,
+// origin, normal, frame, H, K_G, k1, d1, k2, d2 and every f_{k,n}, as documented; read back
+// with 17 digits, each value must be the accessor's exactly.
+void check_stream_output(const Torus& tor, std::mt19937_64& rng)
 {
-  T.begin("7. pca_basis(), condition_number(), operator<<");
+  const std::vector<Point> pts = tor.patch(0.4, 1.1, 0.5, disk_pattern(rng, 40));
+  Fitting fitting;
+  const Form f = fitting(pts.begin(), pts.end(), 4);
+  std::ostringstream os;
+  os.precision(17);
+  os << f;
+  const std::string t = os.str();
+  check(t.rfind("Wavejet form: success", 0) == 0, "operator<<: first line is not 'Wavejet form: success'");
+  std::size_t order = 0, points = 0, corrections = 0;
+  double radius = 0, residual = 0, H = 0, KG = 0, k1 = 0, k2 = 0;
+  Vector3d o, n, u, v, fn, d1, d2;
+  bool ok = read_after(t, "order: ", order) && read_after(t, "points: ", points) &&
+            read_after(t, "radius Rf: ", radius) && read_after(t, "corrections: ", corrections) &&
+            read_after(t, "|f11| residual: ", residual) && read_after(t, "mean curvature: ", H) &&
+            read_after(t, "gaussian curvature: ", KG) && read_after(t, "k1: ", k1) && read_after(t, "k2: ", k2) &&
+            read_vector_after(t, "origin: ", o) && read_vector_after(t, "normal: ", n) &&
+            read_vector_after(t, "frame u: ", u) && read_vector_after(t, "frame v: ", v) &&
+            read_vector_after(t, "frame n: ", fn) && read_vector_after(t, "d1: ", d1) &&
+            read_vector_after(t, "d2: ", d2);
+  check(ok, "operator<<: a documented field is missing:\n" + t);
+  check(order == f.order() && points == f.number_of_points() && corrections == f.number_of_corrections() &&
+            radius == f.radius() && residual == f.tangent_plane_residual(),
+          "operator<<: order / points / Rf / corrections / residual differ from the accessors");
+  check(H == f.mean_curvature() && KG == f.gaussian_curvature() && k1 == f.principal_curvatures(0) &&
+            k2 == f.principal_curvatures(1),
+          "operator<<: curvatures differ from the accessors");
+  check(o == E(f.origin() - CGAL::ORIGIN) && n == E(f.normal_direction()) && u == E(f.first_tangent_direction()) &&
+            v == E(f.second_tangent_direction()) && fn == E(f.frame_normal_direction()) &&
+            d1 == E(f.maximal_principal_direction()) && d2 == E(f.minimal_principal_direction()),
+          "operator<<: origin / normal / frame / principal directions differ from the accessors");
+  int found = 0;
+  for(int k = 0; k <= int(f.order()); ++k)
+    for(int nn = -k; nn <= k; nn += 2)
+    {
+      cplx c;
+      if(read_after(t, str("f(", k, ",", nn, ")="), c) && c == f.coefficient(k, nn)) ++found;
+    }
+  check(found == int(nb_coeffs(f.order())), str("operator<<: ", found, " of ", nb_coeffs(f.order()),
+                                                  " coefficients f(k,n) written and equal to coefficient(k, n)"));
+  check(t.find(str("f(", f.order() + 1, ",")) == std::string::npos, "operator<<: a coefficient beyond the order");
+  // failed and default forms: the status name and order 0
+  std::vector<Point> line;
+  for(int i = 0; i < 20; ++i) line.push_back(Point(1 + 0.1 * i, 2 - 0.05 * i, 0.5 + 0.2 * i));
+  std::ostringstream bad, none;
+  bad << fitting(line.begin(), line.end(), 2);
+  none << Form();
+  check(bad.str().rfind(str("Wavejet form: ", CGAL::Wavejets::fit_status_name(Fit_status::DEGENERATE_NEIGHBORHOOD)), 0) == 0 &&
+            bad.str().find("order: 0") != std::string::npos,
+          "operator<<: failed form does not show its status and order 0:\n" + bad.str());
+  check(none.str().rfind(str("Wavejet form: ", CGAL::Wavejets::fit_status_name(Fit_status::TOO_FEW_POINTS)), 0) == 0,
+          "operator<<: default form does not show its status");
+  std::cout << "  operator<< (17 digits), read back:\n" << t;
+}
+
+void test_accessors(const Kitten& kitten)
+{
+  begin_section("7. pca_basis(), condition_number(), operator<<");
   std::mt19937_64 rng(77);
   std::uniform_real_distribution<double> U(0, 2 * PI);
   Torus tor;
@@ -1342,7 +1385,7 @@ void test_accessors(Tester& T, const Kitten& kitten)
       opt.correction_iterations = corrections;
       Fitting fitting(opt);
       const Form f = fitting(pts.begin(), pts.end(), 4); // no normal: the frame is the PCA frame
-      if(!T.check(f.is_valid() && f.order() == 4, "fit failed")) continue;
+      if(!check(f.is_valid() && f.order() == 4, "fit failed")) continue;
       const std::string tag = str(pts.size(), " points, ", corrections, " corrections: ");
 
       // pca_basis: eigenvalues descending, orthonormal direct eigenvectors.
@@ -1354,7 +1397,7 @@ void test_accessors(Tester& T, const Kitten& kitten)
         lam[i] = b.first;
         vec[i] = E(b.second);
       }
-      T.check(lam[0] >= lam[1] && lam[1] >= lam[2] && lam[2] >= 0, tag + str("eigenvalues not descending: ", lam[0], " ", lam[1], " ", lam[2]));
+      check(lam[0] >= lam[1] && lam[1] >= lam[2] && lam[2] >= 0, tag + str("eigenvalues not descending: ", lam[0], " ", lam[1], " ", lam[2]));
       double ortho = 0;
       for(int i = 0; i < 3; ++i)
       {
@@ -1362,8 +1405,8 @@ void test_accessors(Tester& T, const Kitten& kitten)
         for(int j = i + 1; j < 3; ++j) ortho = (std::max)(ortho, std::abs(vec[i].dot(vec[j])));
       }
       w_ortho = (std::max)(w_ortho, ortho);
-      T.check(ortho <= 1e-14, tag + str("eigenvectors not orthonormal: ", ortho));
-      T.check(vec[0].cross(vec[1]).dot(vec[2]) > 0, tag + "eigenvector basis not direct");
+      check(ortho <= 1e-14, tag + str("eigenvectors not orthonormal: ", ortho));
+      check(vec[0].cross(vec[1]).dot(vec[2]) > 0, tag + "eigenvector basis not direct");
 
       // Reference 1: Eigen on the covariance of the world coordinates about their mean, divided by
       // the number of points (CGAL's convention in Monge_via_jet_fitting::compute_PCA).
@@ -1398,8 +1441,8 @@ void test_accessors(Tester& T, const Kitten& kitten)
         w_cval = (std::max)(w_cval, dc);
         w_vec = (std::max)(w_vec, av);
         w_cvec = (std::max)(w_cvec, ac);
-        T.check(dv <= 1e-13 && dc <= 1e-11, tag + str("eigenvalue ", i, ": ", lam[i], " vs Eigen ", ref, ", CGAL ", cref));
-        T.check(av <= 1e-13 && ac <= 1e-11, tag + str("eigenvector ", i, " off by (scaled) ", av, " / ", ac));
+        check(dv <= 1e-13 && dc <= 1e-11, tag + str("eigenvalue ", i, ": ", lam[i], " vs Eigen ", ref, ", CGAL ", cref));
+        check(av <= 1e-13 && ac <= 1e-11, tag + str("eigenvector ", i, " off by (scaled) ", av, " / ", ac));
       }
       if(corrections == 0)
       {
@@ -1408,7 +1451,7 @@ void test_accessors(Tester& T, const Kitten& kitten)
                                       (E(f.second_tangent_direction()) - vec[1]).norm(),
                                       (E(f.frame_normal_direction()) - vec[2]).norm()});
         w_frame = (std::max)(w_frame, df);
-        T.check(df <= 1e-15, tag + str("frame is not the PCA basis: ", df));
+        check(df <= 1e-15, tag + str("frame is not the PCA basis: ", df));
       }
 
       // condition_number: the ratio of extreme singular values of the kept fit's rescaled system.
@@ -1441,18 +1484,18 @@ void test_accessors(Tester& T, const Kitten& kitten)
         const double e = std::abs(got - ref) / ref;
         w_cond = (std::max)(w_cond, e / ref);
         max_cond = (std::max)(max_cond, ref);
-        T.check(got >= 1 && e <= 1e-14 * ref, tag + str("condition number ", got, " vs SVD of the design matrix ", ref));
+        check(got >= 1 && e <= 1e-14 * ref, tag + str("condition number ", got, " vs SVD of the design matrix ", ref));
       }
     }
   {
     // condition_number() is 0 before any fit and when compute_condition_number is false.
     const std::vector<Point>& pts = hoods.back();
     Fitting fresh;
-    T.check(fresh.condition_number() == 0, "condition number before any fit");
+    check(fresh.condition_number() == 0, "condition number before any fit");
     Fitting_options opt;
     opt.compute_condition_number = false;
     Fitting off(opt);
-    T.check(off(pts.begin(), pts.end(), 4).is_valid() && off.condition_number() == 0,
+    check(off(pts.begin(), pts.end(), 4).is_valid() && off.condition_number() == 0,
             "condition number with compute_condition_number == false");
   }
   std::cout << "  pca_basis: worst eigenvalue difference / lambda_0: Eigen " << w_val << ", CGAL " << w_cval
@@ -1463,64 +1506,8 @@ void test_accessors(Tester& T, const Kitten& kitten)
   std::cout << "  condition_number: worst relative difference to the SVD of the design matrix / cond " << w_cond
             << " (bound 1e-14), largest cond " << max_cond << std::endl;
 
-  // operator<<: writes the status, order, number of points, Rf, corrections, |f11| residual,
-  // origin, normal, frame, H, K_G, k1, d1, k2, d2 and every f_{k,n}, as documented; read back
-  // with 17 digits, each value must be the accessor's exactly.
-  {
-    const std::vector<Point> pts = tor.patch(0.4, 1.1, 0.5, disk_pattern(rng, 40));
-    Fitting fitting;
-    const Form f = fitting(pts.begin(), pts.end(), 4);
-    std::ostringstream os;
-    os.precision(17);
-    os << f;
-    const std::string t = os.str();
-    T.check(t.rfind("Wavejet form: success", 0) == 0, "operator<<: first line is not 'Wavejet form: success'");
-    std::size_t order = 0, points = 0, corrections = 0;
-    double radius = 0, residual = 0, H = 0, KG = 0, k1 = 0, k2 = 0;
-    Vector3d o, n, u, v, fn, d1, d2;
-    bool ok = read_after(t, "order: ", order) && read_after(t, "points: ", points) &&
-              read_after(t, "radius Rf: ", radius) && read_after(t, "corrections: ", corrections) &&
-              read_after(t, "|f11| residual: ", residual) && read_after(t, "mean curvature: ", H) &&
-              read_after(t, "gaussian curvature: ", KG) && read_after(t, "k1: ", k1) && read_after(t, "k2: ", k2) &&
-              read_vector_after(t, "origin: ", o) && read_vector_after(t, "normal: ", n) &&
-              read_vector_after(t, "frame u: ", u) && read_vector_after(t, "frame v: ", v) &&
-              read_vector_after(t, "frame n: ", fn) && read_vector_after(t, "d1: ", d1) &&
-              read_vector_after(t, "d2: ", d2);
-    T.check(ok, "operator<<: a documented field is missing:\n" + t);
-    T.check(order == f.order() && points == f.number_of_points() && corrections == f.number_of_corrections() &&
-              radius == f.radius() && residual == f.tangent_plane_residual(),
-            "operator<<: order / points / Rf / corrections / residual differ from the accessors");
-    T.check(H == f.mean_curvature() && KG == f.gaussian_curvature() && k1 == f.principal_curvatures(0) &&
-              k2 == f.principal_curvatures(1),
-            "operator<<: curvatures differ from the accessors");
-    T.check(o == E(f.origin() - CGAL::ORIGIN) && n == E(f.normal_direction()) && u == E(f.first_tangent_direction()) &&
-              v == E(f.second_tangent_direction()) && fn == E(f.frame_normal_direction()) &&
-              d1 == E(f.maximal_principal_direction()) && d2 == E(f.minimal_principal_direction()),
-            "operator<<: origin / normal / frame / principal directions differ from the accessors");
-    int found = 0;
-    for(int k = 0; k <= int(f.order()); ++k)
-      for(int nn = -k; nn <= k; nn += 2)
-      {
-        cplx c;
-        if(read_after(t, str("f(", k, ",", nn, ")="), c) && c == f.coefficient(k, nn)) ++found;
-      }
-    T.check(found == int(nb_coeffs(f.order())), str("operator<<: ", found, " of ", nb_coeffs(f.order()),
-                                                    " coefficients f(k,n) written and equal to coefficient(k, n)"));
-    T.check(t.find(str("f(", f.order() + 1, ",")) == std::string::npos, "operator<<: a coefficient beyond the order");
-    // failed and default forms: the status name and order 0
-    std::vector<Point> line;
-    for(int i = 0; i < 20; ++i) line.push_back(Point(1 + 0.1 * i, 2 - 0.05 * i, 0.5 + 0.2 * i));
-    std::ostringstream bad, none;
-    bad << fitting(line.begin(), line.end(), 2);
-    none << Form();
-    T.check(bad.str().rfind(str("Wavejet form: ", CGAL::Wavejets::fit_status_name(Fit_status::DEGENERATE_NEIGHBORHOOD)), 0) == 0 &&
-              bad.str().find("order: 0") != std::string::npos,
-            "operator<<: failed form does not show its status and order 0:\n" + bad.str());
-    T.check(none.str().rfind(str("Wavejet form: ", CGAL::Wavejets::fit_status_name(Fit_status::TOO_FEW_POINTS)), 0) == 0,
-            "operator<<: default form does not show its status");
-    std::cout << "  operator<< (17 digits), read back:\n" << t;
-  }
-  T.end();
+  check_stream_output(tor, rng);
+  end_section();
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -1537,9 +1524,9 @@ bool same_form(const Form& a, const Form& b)
          a.gaussian_curvature() == b.gaussian_curvature() && a.tangent_plane_residual() == b.tangent_plane_residual();
 }
 
-void test_low_order_tangent_search(Tester& T, const Kitten& kitten)
+void test_low_order_tangent_search(const Kitten& kitten)
 {
-  T.begin("9. tangent-plane search at order 2 (tangent_plane_order), then one order-K fit");
+  begin_section("9. tangent-plane search at order 2 (tangent_plane_order), then one order-K fit");
   std::mt19937_64 rng(9);
   std::uniform_real_distribution<double> U(-1, 1);
   std::vector<Eigen::Vector2d> pattern;
@@ -1599,10 +1586,10 @@ void test_low_order_tangent_search(Tester& T, const Kitten& kitten)
     }
     ++n;
   }
-  T.check(valid && n == 40, "every fit valid at its order");
-  T.check(same_high, "tangent_plane_order >= the order: the same form as the default search (bitwise)");
-  T.check(same_nc, "correction_iterations 0: tangent_plane_order changes nothing (bitwise)");
-  T.check(same_curvature, "INITIAL_FRAME curvatures equal the default search's, and the normal does not depend on the "
+  check(valid && n == 40, "every fit valid at its order");
+  check(same_high, "tangent_plane_order >= the order: the same form as the default search (bitwise)");
+  check(same_nc, "correction_iterations 0: tangent_plane_order changes nothing (bitwise)");
+  check(same_curvature, "INITIAL_FRAME curvatures equal the default search's, and the normal does not depend on the "
                           "curvature frame (bitwise)");
   for(int o = 0; o < 2; ++o)
   {
@@ -1613,49 +1600,47 @@ void test_low_order_tangent_search(Tester& T, const Kitten& kitten)
     // that of an order-K fit in a plane close to the tangent plane, like the full-order search's
     // and CGAL's PCA-frame jet's (measured on these patches: 0.97 and 0.94 times the full-order
     // search's at K = 4 and 6, 0.96 and 0.64 times CGAL's). Bound: 1.2x both.
-    T.check(rl <= 1.2 * rf && rl <= 1.2 * rm, str("K = ", o == 0 ? 4 : 6, ": order-2 search normal error ", rl,
+    check(rl <= 1.2 * rf && rl <= 1.2 * rm, str("K = ", o == 0 ? 4 : 6, ": order-2 search normal error ", rl,
                                                    " vs full-order ", rf, ", CGAL ", rm));
   }
   // The plane found at order 2 is close to the order-K tangent plane: the residual tilt |f_{1,1}|
   // of the order-K fit in it stays small (measured 1.7e-3 on these patches, h/r = 0.3; the bound
   // 1e-2 is a regression bound: a search that failed would leave tilts of the PCA plane, ~h/r).
   std::cout << "  largest residual tilt |f_{1,1}| of the order-K fit in the order-2 plane: " << max_residual << std::endl;
-  T.check(max_residual <= 1e-2, str("residual tilt of the order-K fit in the order-2 plane: ", max_residual));
+  check(max_residual <= 1e-2, str("residual tilt of the order-K fit in the order-2 plane: ", max_residual));
 
   // Adaptive order: with 25 points K 6 is lowered to 5 ((5+1)(5+2)/2 = 21 unknowns x 1.1 <= 25) and
   // the order-2 search still runs; with 8 points (order 2 only) the search order equals the order.
-  if(T.check(!kitten.pts.empty(), "kitten not loaded"))
+  if(check(!kitten.pts.empty(), "kitten not loaded"))
   {
     for(std::size_t q : {100u, 2000u, 4000u})
     {
       const std::vector<Point> pts25 = kitten.neighborhood(q, 25), pts8 = kitten.neighborhood(q, 8);
       const Form a = f_low(pts25.begin(), pts25.end(), 6), b = f_full(pts25.begin(), pts25.end(), 6);
-      T.check(a.is_valid() && a.order() == 5 && b.order() == 5 && !form_has_nan(a),
+      check(a.is_valid() && a.order() == 5 && b.order() == 5 && !form_has_nan(a),
               str("kitten point ", q, ", 25 points: order ", a.order()));
       const Form c = f_low(pts8.begin(), pts8.end(), 6), d = f_full(pts8.begin(), pts8.end(), 6);
-      T.check(c.is_valid() && c.order() == 2 && same_form(c, d), str("kitten point ", q, ", 8 points: order 2, as the default"));
+      check(c.is_valid() && c.order() == 2 && same_form(c, d), str("kitten point ", q, ", 8 points: order 2, as the default"));
     }
   }
-  T.end();
+  end_section();
 }
 
 } // namespace
 
-int main()
+int main(int argc, char** argv)
 {
   std::cout.precision(4);
-  Tester T;
-  Kitten kitten;
-  if(!kitten.load("data/kitten.xyz")) std::cout << "cannot read data/kitten.xyz" << std::endl;
-  test_exact_recovery(T);
-  test_analytic_surfaces(T);
-  test_convergence(T);
-  test_cgal_cross_check(T, kitten);
-  test_invariances(T, kitten);
-  test_stability(T);
-  test_adaptive_order_and_failures(T);
-  test_accessors(T, kitten);
-  test_low_order_tangent_search(T, kitten);
-  std::cout << (T.total_failures ? "FAILED: " : "all checks passed: ") << T.total_failures << " failure(s)" << std::endl;
-  return T.total_failures ? EXIT_FAILURE : EXIT_SUCCESS;
+  using wavejets_test::Case;
+  return wavejets_test::run_cases(argc, argv, {
+    Case{"analytic.exact_recovery", test_exact_recovery},
+    Case{"analytic.surfaces", test_analytic_surfaces},
+    Case{"analytic.convergence_rate", test_convergence},
+    Case{"cgal.monge_cross_check", [] { test_cgal_cross_check(kitten()); }},
+    Case{"invariances", [] { test_invariances(kitten()); }},
+    Case{"stability.seed_normal_perturbation", test_stability},
+    Case{"failures.adaptive_order_and_failure_states", test_adaptive_order_and_failures},
+    Case{"accessors", [] { test_accessors(kitten()); }},
+    Case{"tangent_plane_order", [] { test_low_order_tangent_search(kitten()); }},
+  });
 }

@@ -7,11 +7,12 @@
 //
 // Author(s) : The CGAL Wavejets developers
 
-#ifndef WAVEJETS_BENCHMARK_ANALYTIC_SURFACES_H
-#define WAVEJETS_BENCHMARK_ANALYTIC_SURFACES_H
+#ifndef WAVEJETS_TEST_ANALYTIC_SURFACES_H
+#define WAVEJETS_TEST_ANALYTIC_SURFACES_H
 
 // Surfaces with exact normals and curvatures, uniform samplers, perturbations and error metrics,
-// shared by benchmark/Wavejets/bench_accuracy.cpp and test/Wavejets/test_accuracy.cpp.
+// shared by the tests (test_accuracy, test_hermite) and the benchmarks (bench_accuracy,
+// bench_ponca_accuracy: their CMake target has test/Wavejets/support on its include path).
 // Header-only, depends on Eigen and the standard library only.
 //
 // Conventions (those of the package, WAVEJETS_MATH.md §3): normals point outward; curvature
@@ -217,6 +218,34 @@ public:
   }
 };
 
+/// The torus ((R + r cos v) cos u, (R + r cos v) sin u, r sin v) of axis z in its
+/// parametrization, with the outward normal and its exact curvatures and principal directions
+/// (the one closed form of the torus of the tests and benchmarks). Curvatures w.r.t. the outward
+/// normal (the torus bends away from it): along the parallel (d/du) -cos v / (R + r cos v), along
+/// the meridian (d/dv) -1/r.
+struct Parametric_torus
+{
+  double R = 3., r = 1.;
+  V3 point(double u, double v) const
+  {
+    const double w = R + r * std::cos(v);
+    return V3(w * std::cos(u), w * std::sin(u), r * std::sin(v));
+  }
+  V3 outward_normal(double u, double v) const
+  {
+    return V3(std::cos(v) * std::cos(u), std::cos(v) * std::sin(u), std::sin(v));
+  }
+  double parallel_curvature(double v) const { return -std::cos(v) / (R + r * std::cos(v)); }
+  double meridian_curvature() const { return -1. / r; }
+  double mean_curvature(double v) const { return 0.5 * (parallel_curvature(v) + meridian_curvature()); }
+  double gaussian_curvature(double v) const { return parallel_curvature(v) * meridian_curvature(); }
+  V3 parallel_direction(double u) const { return V3(-std::sin(u), std::cos(u), 0.); }
+  V3 meridian_direction(double u, double v) const
+  {
+    return V3(-std::sin(v) * std::cos(u), -std::sin(v) * std::sin(u), std::cos(v));
+  }
+};
+
 /// Torus of axis z: (sqrt(x^2+y^2) - R)^2 + z^2 = r^2, R = 0.7, r = 0.3.
 class Torus : public Implicit_surface
 {
@@ -263,8 +292,7 @@ public:
     {
       const double u = 2. * M_PI * U(rng), v = 2. * M_PI * U(rng);
       if(U(rng) * (R + r) > R + r * std::cos(v)) continue;
-      const double rho = R + r * std::cos(v);
-      out.push_back(make_sample(V3(rho * std::cos(u), rho * std::sin(u), r * std::sin(v))));
+      out.push_back(make_sample(Parametric_torus{R, r}.point(u, v)));
     }
     return out;
   }
@@ -586,4 +614,4 @@ inline Truth finite_difference_truth(const Surface& S, const V3& p, double h, do
 
 } // namespace wavejets_bench
 
-#endif // WAVEJETS_BENCHMARK_ANALYTIC_SURFACES_H
+#endif // WAVEJETS_TEST_ANALYTIC_SURFACES_H
