@@ -63,13 +63,10 @@
 #include <memory>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <tuple>
 #include <vector>
 
-#ifdef CGAL_LINKED_WITH_TBB
-#include <tbb/info.h>
-#endif
+#include "bench_common.h"
 
 typedef CGAL::Exact_predicates_inexact_constructions_kernel Kernel;
 typedef Kernel::Point_3 Point;
@@ -238,18 +235,7 @@ static std::vector<Estimate> run_estimator(Estimator e, const Dataset& d, const 
       }
       else if(e == CGAL_JET)
       {
-        std::size_t deg = K;
-        while(deg >= 2 && double(pts.size()) < 1.1 * double(coefficients(deg))) --deg; // WJ's adaptive rule
-        if(deg < 2) continue;
-        Monge_fitting::Monge_form m = monge(pts.begin(), pts.end(), deg, 2);
-        m.comply_wrt_given_normal(Vector(t.normal.x(), t.normal.y(), t.normal.z()));
-        r.k1 = m.principal_curvatures(0);
-        r.k2 = m.principal_curvatures(1);
-        r.H = 0.5 * (r.k1 + r.k2);
-        r.K = r.k1 * r.k2;
-        const Vector n = m.normal_direction();
-        r.n = WB::V3(n.x(), n.y(), n.z());
-        r.ok = true;
+        WB::jet_estimate(monge, pts, K, Vector(t.normal.x(), t.normal.y(), t.normal.z()), r);
       }
       else
       {
@@ -319,23 +305,6 @@ static std::string fmt(double v, int prec = 3)
   std::ostringstream s;
   if(v != 0. && (std::abs(v) < 1e-3 || std::abs(v) >= 1e4)) s << std::scientific << std::setprecision(prec - 1) << v;
   else s << std::setprecision(prec) << v;
-  return s.str();
-}
-
-static std::string machine_description()
-{
-  std::string cpu = "unknown CPU";
-  std::ifstream f("/proc/cpuinfo");
-  std::string line;
-  while(std::getline(f, line))
-    if(line.rfind("model name", 0) == 0) { cpu = line.substr(line.find(':') + 2); break; }
-  std::ostringstream s;
-  s << cpu << ", " << std::thread::hardware_concurrency() << " hardware threads";
-#ifdef CGAL_LINKED_WITH_TBB
-  s << ", TBB with " << tbb::info::default_concurrency() << " threads (Parallel_if_available_tag)";
-#else
-  s << ", no TBB (sequential)";
-#endif
   return s.str();
 }
 
@@ -420,8 +389,7 @@ static std::vector<Point> cgal_jet_smooth(const std::vector<Point>& in, std::siz
       query.neighbors(i, 0, radius, nb, scratch);
       v.assign(1, in[i]);
       for(std::size_t j : nb) v.push_back(in[j]);
-      std::size_t deg = D;
-      while(deg >= 2 && double(v.size()) < 1.1 * double(coefficients(deg))) --deg;
+      const std::size_t deg = WB::adaptive_jet_degree(v.size(), D);
       if(deg < 2) continue;
       out[i] = monge(v.begin(), v.end(), deg, 2).origin();
     }
@@ -432,182 +400,281 @@ static std::vector<Point> cgal_jet_smooth(const std::vector<Point>& in, std::siz
 
 struct Pipe_output { std::string block, target, dat; double seconds = 0; };
 
-static Pipe_output noisy_pipeline(const Options& o, const std::vector<std::unique_ptr<WB::Surface> >& surfaces)
+typedef std::vector<std::unique_ptr<WB::Surface> > Surfaces;
+
+/// Enough evaluation points estimated (at most 1% not fitted) for a result to compete for "best".
+static bool usable(const Result& r) { return r.evaluated > 0 && r.failed * 100 <= r.evaluated + r.failed; }
+
+/// The setting of a pipeline row, as the tables print it.
+static std::string config(const Pipe_result& x)
 {
-  CGAL::Real_timer total;
-  total.start();
+  std::ostringstream c;
+  if(x.method == PIPE_PLAIN) c << "D=" << x.K2 << ", r=" << x.r2;
+  else c << x.passes << "x(K1=" << x.K1 << ", r1=" << x.r1 << ") + K2=" << x.K2 << ", r2=" << x.r2;
+  return c.str();
+}
+
+static bool same_config(const Pipe_result& a, const Pipe_result& b)
+{
+  return a.method == b.method && a.K1 == b.K1 && a.r1 == b.r1 && a.passes == b.passes && a.K2 == b.K2 && a.r2 == b.r2;
+}
+
+static std::string H_of(const Pipe_result* x) { return x ? fmt(x->res.H) : std::string("-"); }
+
+static std::string H_ratio(const Pipe_result* a, const Pipe_result* b)
+{
+  return a && b ? fmt(a->res.H / b->res.H) : std::string("-");
+}
+
+/// One denoising configuration: every pass runs, and is estimated after the passes listed (all, or the last),
+/// on the (K2, r2) grid given.
+struct Denoise_cfg
+{
+  int method; // PIPE_WJ or PIPE_CGAL_S
+  std::size_t K1; double r1; int passes; bool all_passes;
+  std::vector<std::size_t> K2s; std::vector<double> r2s;
+};
+
+/// The section "Noisy scans: denoise, then estimate": runs the pipelines on their grid, then writes the section,
+/// its line in "Targets" and the data file.
+class Noisy_pipeline
+{
+public:
+  Noisy_pipeline(const Options& options, const Surfaces& surfaces_) : o(options), surfaces(surfaces_) {}
+  Pipe_output run();
+
+private:
+  /// The best setting common to every surface: its row on the first surface and its score (mean log ratio).
+  struct Common { const Pipe_result* proto = nullptr; double score = 1e300; };
+  /// On how many surfaces WJ reaches half of plain CGAL (a), of CGAL-S (b), of plain CGAL up to r = 0.4 (a').
+  struct Targets_met { std::size_t a = 0, b = 0, a2 = 0; };
+  static constexpr double target_sigma = 0.5;
+
+  // experiments
+  void run_target_grid();
+  void run_other_noise_levels();
+  void run_dataset(std::size_t s, double sigma, const std::vector<Denoise_cfg>& cfgs);
+  void denoise_once(std::vector<Point>& pts, const Denoise_cfg& c);
+  void estimate(const Dataset& m, Pipe_result proto, const std::vector<std::size_t>& K2list, const std::vector<double>& r2s);
+  // selection
+  const Pipe_result* best(const std::string& S, double sigma, const std::vector<int>& methods, double max_r2,
+                          int passes = 0) const;
+  Common common_best(int method, double sigma) const;
+  const Pipe_result* find_config(const Pipe_result& proto, const std::string& S, double sigma) const;
+  // report
+  void write_introduction(std::ostream& md, double seconds) const;
+  Targets_met write_best_per_surface(std::ostream& md) const;
+  void write_passes(std::ostream& md) const;
+  Common write_common_setting(std::ostream& md) const;
+  void write_point_set_check(std::ostream& md, const Pipe_result& c) const;
+  std::string point_set_check_row(std::size_t s, const Pipe_result& c) const;
+  std::string target_block(const Targets_met& met) const;
+  void write_all_pipelines(std::ostream& md) const;
+  std::string data_file() const;
+
+  const Options& o;
+  const Surfaces& surfaces;
   const std::vector<double> sigmas = o.quick ? std::vector<double>{0.5} : std::vector<double>{0., 0.25, 0.5, 1.};
   const std::vector<std::size_t> K1s = {2, 3, 4}, K2s = {2, 3};
   const std::vector<double> radii = {0.1, 0.15, 0.2};
   const std::vector<double> plain_radii = {0.1, 0.15, 0.2, 0.3, 0.4}; // 0.3, 0.4: extra comparator (a')
   const int max_passes = 2;
+  CGAL::Real_timer total;
   std::vector<Pipe_result> rows;
   double seconds_wj = 0, seconds_cgal = 0, seconds_est = 0;
   std::size_t wj_unfitted = 0, wj_clamped = 0;
+};
 
-  // ---- Selection -----------------------------------------------------------------------------------
-  auto usable = [](const Result& r) { return r.evaluated > 0 && r.failed * 100 <= r.evaluated + r.failed; };
-  auto config = [](const Pipe_result& x) {
-    std::ostringstream c;
-    if(x.method == PIPE_PLAIN) c << "D=" << x.K2 << ", r=" << x.r2;
-    else c << x.passes << "x(K1=" << x.K1 << ", r1=" << x.r1 << ") + K2=" << x.K2 << ", r2=" << x.r2;
-    return c.str();
-  };
-  // best row of (surface, sigma) among `methods`; max_r2: largest estimation radius allowed; passes: 0 = any
-  auto best = [&](const std::string& S, double sigma, std::vector<int> methods, double max_r2, int passes = 0) {
-    const Pipe_result* b = nullptr;
-    for(const Pipe_result& x : rows)
-      if(x.surface == S && x.sigma == sigma && x.r2 <= max_r2 + 1e-12 && (passes == 0 || x.passes == passes) &&
-         std::find(methods.begin(), methods.end(), x.method) != methods.end() && usable(x.res) &&
-         (!b || x.res.H < b->res.H))
-        b = &x;
-    return b;
-  };
-  auto H_of = [](const Pipe_result* x) { return x ? fmt(x->res.H) : std::string("-"); };
-  auto ratio = [](const Pipe_result* a, const Pipe_result* b) {
-    return a && b ? fmt(a->res.H / b->res.H) : std::string("-");
-  };
-
-  // Best common setting (same for every surface) per method at sigma = 0.5%: smallest geometric mean over the
-  // surfaces of (H RMSE / best plain CGAL H RMSE at r <= 0.2).
-  struct Common { const Pipe_result* proto = nullptr; double score = 1e300; };
-  auto same_config = [](const Pipe_result& a, const Pipe_result& b) {
-    return a.method == b.method && a.K1 == b.K1 && a.r1 == b.r1 && a.passes == b.passes && a.K2 == b.K2 && a.r2 == b.r2;
-  };
-  auto common_best = [&](int method, double sigma) {
-    Common c;
-    for(const Pipe_result& p : rows)
-    {
-      if(p.method != method || p.sigma != sigma || p.surface != surfaces[0]->name()) continue;
-      double logsum = 0;
-      std::size_t n = 0;
-      for(const auto& S : surfaces)
-        for(const Pipe_result& x : rows)
-          if(x.surface == S->name() && x.sigma == sigma && same_config(x, p))
-          {
-            const Pipe_result* pl = best(S->name(), sigma, {PIPE_PLAIN}, 0.2);
-            if(usable(x.res) && pl) { logsum += std::log(x.res.H / pl->res.H); ++n; }
-            else logsum += 1e6;
-          }
-      if(n == surfaces.size() && logsum / double(n) < c.score) { c.score = logsum / double(n); c.proto = &p; }
-    }
-    return c;
-  };
-  auto find_config = [&](const Pipe_result& proto, const std::string& S, double sigma) -> const Pipe_result* {
-    for(const Pipe_result& x : rows)
-      if(x.surface == S && x.sigma == sigma && same_config(x, proto)) return &x;
-    return nullptr;
-  };
-
-  // One (surface, sigma) data set; every denoising configuration runs both passes, and is estimated after the
-  // passes listed, on the (K2, r2) grid given.
-  struct Denoise_cfg
-  {
-    int method; // PIPE_WJ or PIPE_CGAL_S
-    std::size_t K1; double r1; int passes; bool all_passes;
-    std::vector<std::size_t> K2s; std::vector<double> r2s;
-  };
-  auto run_dataset = [&](std::size_t s, double sigma, const std::vector<Denoise_cfg>& cfgs) {
-    const WB::Surface& S = *surfaces[s];
-    CGAL::Real_timer t;
-    t.start();
-    const Dataset d = make_dataset(S, s, o, sigma, 0.);
-    auto estimate = [&](const Dataset& m, int method, std::size_t K1, double r1, int passes, double residual,
-                        const std::vector<std::size_t>& K2list, const std::vector<double>& r2s) {
-      CGAL::Real_timer te;
-      te.start();
-      for(double r2 : r2s)
-      {
-        const Neighborhoods nh = gather(m, r2);
-        for(std::size_t K2 : K2list)
-        {
-          Pipe_result x;
-          x.surface = S.name(); x.sigma = sigma; x.K1 = K1; x.r1 = r1; x.passes = passes; x.K2 = K2; x.r2 = r2;
-          x.residual = residual;
-          if(method == PIPE_WJ)
-          {
-            const std::vector<Estimate> est = run_estimator(WJ, m, nh, K2, r2);
-            x.method = PIPE_WJ; x.res = evaluate(est, m, true); rows.push_back(x);
-            x.method = PIPE_WJ_T; x.res = evaluate(est, m, true, true); rows.push_back(x);
-          }
-          else
-          {
-            x.method = method;
-            x.res = evaluate(run_estimator(CGAL_JET, m, nh, K2, r2), m, true);
-            rows.push_back(x);
-          }
-        }
-      }
-      seconds_est += te.time();
-    };
-    double residual = 0;
-    {
-      const Dataset m = moved_dataset(d, d.points, S, &residual);
-      estimate(m, PIPE_PLAIN, 0, 0., 0, residual, K2s, plain_radii);
-    }
-    for(const Denoise_cfg& c : cfgs)
-    {
-      std::vector<Point> pts = d.points;
-      for(int pass = 1; pass <= c.passes; ++pass)
-      {
-        CGAL::Real_timer tw;
-        tw.start();
-        if(c.method == PIPE_WJ)
-        {
-          const CGAL::Wavejets::Processing_report rep =
-            CGAL::wavejet_enhance_positions<Tag>(pts, 0, 1.0, WP::order(c.K1).neighbor_radius(c.r1));
-          seconds_wj += tw.time();
-          wj_unfitted += rep.number_of_unfitted_points;
-          wj_clamped += rep.number_of_clamped_points;
-        }
-        else
-        {
-          pts = cgal_jet_smooth(pts, c.K1, c.r1);
-          seconds_cgal += tw.time();
-        }
-        if(c.all_passes || pass == c.passes)
-        {
-          const Dataset m = moved_dataset(d, pts, S, &residual);
-          estimate(m, c.method, c.K1, c.r1, pass, residual, c.K2s, c.r2s);
-        }
-      }
-    }
-    std::cerr << S.name() << " sigma " << sigma << "% pipeline: " << t.time() << " s (total " << total.time() << " s)\n";
-  };
-
-  // sigma = 0.5% (the target): the full grid.
-  const double target_sigma = 0.5;
-  {
-    std::vector<Denoise_cfg> grid;
-    for(int method : {PIPE_WJ, PIPE_CGAL_S})
-      for(std::size_t K1 : K1s)
-        for(double r1 : radii) grid.push_back({method, K1, r1, max_passes, true, K2s, radii});
-    for(std::size_t s = 0; s < surfaces.size(); ++s) run_dataset(s, target_sigma, grid);
-  }
-
-  // The other noise levels (runtime): only the best common setting of each pipeline at sigma = 0.5%.
-  const Common common_wj = common_best(PIPE_WJ, target_sigma), common_wjt = common_best(PIPE_WJ_T, target_sigma),
-               common_cg = common_best(PIPE_CGAL_S, target_sigma);
-  const Common common_w = (common_wjt.proto && common_wjt.score < common_wj.score) ? common_wjt : common_wj;
-  const Pipe_result proto_w = common_w.proto ? *common_w.proto : Pipe_result(),
-                    proto_c = common_cg.proto ? *common_cg.proto : Pipe_result();
-  if(common_w.proto && common_cg.proto)
-  {
-    const std::vector<Denoise_cfg> cfgs = {
-      {PIPE_WJ, proto_w.K1, proto_w.r1, proto_w.passes, false, {proto_w.K2}, {proto_w.r2}},
-      {PIPE_CGAL_S, proto_c.K1, proto_c.r1, proto_c.passes, false, {proto_c.K2}, {proto_c.r2}}};
-    for(std::size_t s = 0; s < surfaces.size(); ++s)
-      for(double sigma : sigmas)
-        if(sigma != target_sigma) run_dataset(s, sigma, cfgs);
-  }
+Pipe_output Noisy_pipeline::run()
+{
+  total.start();
+  run_target_grid();
+  run_other_noise_levels();
 
   Pipe_output out;
   out.seconds = total.time();
   std::ostringstream md, tg;
-  const bool have_target_sigma = std::find(sigmas.begin(), sigmas.end(), target_sigma) != sigmas.end();
+  write_introduction(md, out.seconds);
+  if(std::find(sigmas.begin(), sigmas.end(), target_sigma) != sigmas.end())
+  {
+    const Targets_met met = write_best_per_surface(md);
+    write_passes(md);
+    const Common cbest = write_common_setting(md);
+    if(cbest.proto) write_point_set_check(md, *cbest.proto);
+    tg << target_block(met);
+  }
+  write_all_pipelines(md);
+  out.block = md.str();
+  out.target = tg.str();
+  out.dat = data_file();
+  return out;
+}
 
+// ---- Experiments --------------------------------------------------------------------------------
+
+/// sigma = 0.5% (the target): the full grid.
+void Noisy_pipeline::run_target_grid()
+{
+  std::vector<Denoise_cfg> grid;
+  for(int method : {PIPE_WJ, PIPE_CGAL_S})
+    for(std::size_t K1 : K1s)
+      for(double r1 : radii) grid.push_back({method, K1, r1, max_passes, true, K2s, radii});
+  for(std::size_t s = 0; s < surfaces.size(); ++s) run_dataset(s, target_sigma, grid);
+}
+
+/// The other noise levels (runtime): only the best common setting of each pipeline at sigma = 0.5%.
+void Noisy_pipeline::run_other_noise_levels()
+{
+  const Common common_wj = common_best(PIPE_WJ, target_sigma), common_wjt = common_best(PIPE_WJ_T, target_sigma),
+               common_cg = common_best(PIPE_CGAL_S, target_sigma);
+  const Common common_w = (common_wjt.proto && common_wjt.score < common_wj.score) ? common_wjt : common_wj;
+  if(!common_w.proto || !common_cg.proto) return;
+  // copies: run_dataset appends to `rows`
+  const Pipe_result proto_w = *common_w.proto, proto_c = *common_cg.proto;
+  const std::vector<Denoise_cfg> cfgs = {
+    {PIPE_WJ, proto_w.K1, proto_w.r1, proto_w.passes, false, {proto_w.K2}, {proto_w.r2}},
+    {PIPE_CGAL_S, proto_c.K1, proto_c.r1, proto_c.passes, false, {proto_c.K2}, {proto_c.r2}}};
+  for(std::size_t s = 0; s < surfaces.size(); ++s)
+    for(double sigma : sigmas)
+      if(sigma != target_sigma) run_dataset(s, sigma, cfgs);
+}
+
+/// One (surface, sigma) data set: plain CGAL on the noisy points, then every denoising configuration.
+void Noisy_pipeline::run_dataset(std::size_t s, double sigma, const std::vector<Denoise_cfg>& cfgs)
+{
+  const WB::Surface& S = *surfaces[s];
+  CGAL::Real_timer t;
+  t.start();
+  const Dataset d = make_dataset(S, s, o, sigma, 0.);
+  Pipe_result proto;
+  proto.surface = S.name();
+  proto.sigma = sigma;
+  double residual = 0;
+  {
+    const Dataset m = moved_dataset(d, d.points, S, &residual);
+    proto.method = PIPE_PLAIN;
+    proto.residual = residual;
+    estimate(m, proto, K2s, plain_radii);
+  }
+  for(const Denoise_cfg& c : cfgs)
+  {
+    std::vector<Point> pts = d.points;
+    for(int pass = 1; pass <= c.passes; ++pass)
+    {
+      denoise_once(pts, c);
+      if(c.all_passes || pass == c.passes)
+      {
+        const Dataset m = moved_dataset(d, pts, S, &residual);
+        proto.method = c.method; proto.K1 = c.K1; proto.r1 = c.r1; proto.passes = pass; proto.residual = residual;
+        estimate(m, proto, c.K2s, c.r2s);
+      }
+    }
+  }
+  std::cerr << S.name() << " sigma " << sigma << "% pipeline: " << t.time() << " s (total " << total.time() << " s)\n";
+}
+
+/// One denoising pass of `c` on `pts`.
+void Noisy_pipeline::denoise_once(std::vector<Point>& pts, const Denoise_cfg& c)
+{
+  CGAL::Real_timer tw;
+  tw.start();
+  if(c.method == PIPE_WJ)
+  {
+    const CGAL::Wavejets::Processing_report rep =
+      CGAL::wavejet_enhance_positions<Tag>(pts, 0, 1.0, WP::order(c.K1).neighbor_radius(c.r1));
+    seconds_wj += tw.time();
+    wj_unfitted += rep.number_of_unfitted_points;
+    wj_clamped += rep.number_of_clamped_points;
+  }
+  else
+  {
+    pts = cgal_jet_smooth(pts, c.K1, c.r1);
+    seconds_cgal += tw.time();
+  }
+}
+
+/// Estimates on `m` at every (r2, K2) and appends the rows; `proto` holds the rest of the setting (surface, sigma,
+/// method, denoising, residual).
+void Noisy_pipeline::estimate(const Dataset& m, Pipe_result proto, const std::vector<std::size_t>& K2list,
+                              const std::vector<double>& r2s)
+{
+  CGAL::Real_timer te;
+  te.start();
+  for(double r2 : r2s)
+  {
+    const Neighborhoods nh = gather(m, r2);
+    for(std::size_t K2 : K2list)
+    {
+      Pipe_result x = proto;
+      x.K2 = K2;
+      x.r2 = r2;
+      if(proto.method == PIPE_WJ)
+      {
+        const std::vector<Estimate> est = run_estimator(WJ, m, nh, K2, r2);
+        x.method = PIPE_WJ; x.res = evaluate(est, m, true); rows.push_back(x);
+        x.method = PIPE_WJ_T; x.res = evaluate(est, m, true, true); rows.push_back(x);
+      }
+      else
+      {
+        x.res = evaluate(run_estimator(CGAL_JET, m, nh, K2, r2), m, true);
+        rows.push_back(x);
+      }
+    }
+  }
+  seconds_est += te.time();
+}
+
+// ---- Selection ----------------------------------------------------------------------------------
+
+/// Best row of (surface, sigma) among `methods`; max_r2: largest estimation radius allowed; passes: 0 = any.
+const Pipe_result* Noisy_pipeline::best(const std::string& S, double sigma, const std::vector<int>& methods,
+                                        double max_r2, int passes) const
+{
+  const Pipe_result* b = nullptr;
+  for(const Pipe_result& x : rows)
+    if(x.surface == S && x.sigma == sigma && x.r2 <= max_r2 + 1e-12 && (passes == 0 || x.passes == passes) &&
+       std::find(methods.begin(), methods.end(), x.method) != methods.end() && usable(x.res) &&
+       (!b || x.res.H < b->res.H))
+      b = &x;
+  return b;
+}
+
+/// Best common setting (same for every surface) of `method` at `sigma`: smallest geometric mean over the
+/// surfaces of (H RMSE / best plain CGAL H RMSE at r <= 0.2).
+Noisy_pipeline::Common Noisy_pipeline::common_best(int method, double sigma) const
+{
+  Common c;
+  for(const Pipe_result& p : rows)
+  {
+    if(p.method != method || p.sigma != sigma || p.surface != surfaces[0]->name()) continue;
+    double logsum = 0;
+    std::size_t n = 0;
+    for(const auto& S : surfaces)
+      for(const Pipe_result& x : rows)
+        if(x.surface == S->name() && x.sigma == sigma && same_config(x, p))
+        {
+          const Pipe_result* pl = best(S->name(), sigma, {PIPE_PLAIN}, 0.2);
+          if(usable(x.res) && pl) { logsum += std::log(x.res.H / pl->res.H); ++n; }
+          else logsum += 1e6;
+        }
+    if(n == surfaces.size() && logsum / double(n) < c.score) { c.score = logsum / double(n); c.proto = &p; }
+  }
+  return c;
+}
+
+const Pipe_result* Noisy_pipeline::find_config(const Pipe_result& proto, const std::string& S, double sigma) const
+{
+  for(const Pipe_result& x : rows)
+    if(x.surface == S && x.sigma == sigma && same_config(x, proto)) return &x;
+  return nullptr;
+}
+
+// ---- Report -------------------------------------------------------------------------------------
+
+void Noisy_pipeline::write_introduction(std::ostream& md, double seconds) const
+{
   md << "<!-- noisy-pipeline-begin -->\n## Noisy scans: denoise, then estimate\n\n"
-     << "(Written by `build/bench/benchmark/Wavejets/" << o.command << "` on " << machine_description() << ", run time " << fmt(out.seconds, 3) << " s; a default run keeps this block, `--noisy-pipeline` regenerates it"
+     << "(Written by `build/bench/benchmark/Wavejets/" << o.command << "` on " << WB::machine_description() << ", run time " << fmt(seconds, 3) << " s; a default run keeps this block, `--noisy-pipeline` regenerates it"
         " together with the rest.)\n\n"
      << "Pipelines, on the same noisy data sets (" << o.points << " points, seeds as above) and the same " << o.eval
      << " evaluation points:\n\n"
@@ -633,171 +700,191 @@ static Pipe_output noisy_pipeline(const Options& o, const std::vector<std::uniqu
         " by the projection of an arbitrary neighbor (clean unit sphere, 20000 points, degree 2: mean motion 0.082 at"
         " r = 0.1 and 0.18 at r = 0.2, instead of ~1e-6 in k-nearest mode). CGAL-S runs the same computation on the"
         " package's radius query, query point first.\n\n";
+}
 
-  if(have_target_sigma)
+/// Table "best setting per surface" at sigma = 0.5%; returns on how many surfaces each target is met.
+Noisy_pipeline::Targets_met Noisy_pipeline::write_best_per_surface(std::ostream& md) const
+{
+  md << "### sigma = 0.5%: best setting per surface\n\n"
+     << "Best H RMSE over the grid of each pipeline (oracle choice per surface, as in the Targets table). 'ratio a' ="
+        " WJ / plain CGAL (r <= 0.2), 'ratio b' = WJ / CGAL-S, 'ratio a'' = WJ / plain CGAL with r up to 0.4. WJ = best of"
+        " WJ and WJ-T.\n\n"
+     << "| surface | plain CGAL (a): H (setting) | plain CGAL r <= 0.4 (a') | CGAL-S (b) | WJ pipeline | ratio a | ratio b | ratio a' | WJ / (a) <= 0.5? |\n"
+     << "| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+  Targets_met met;
+  for(const auto& S : surfaces)
   {
-    md << "### sigma = 0.5%: best setting per surface\n\n"
-       << "Best H RMSE over the grid of each pipeline (oracle choice per surface, as in the Targets table). 'ratio a' ="
-          " WJ / plain CGAL (r <= 0.2), 'ratio b' = WJ / CGAL-S, 'ratio a'' = WJ / plain CGAL with r up to 0.4. WJ = best of"
-          " WJ and WJ-T.\n\n"
-       << "| surface | plain CGAL (a): H (setting) | plain CGAL r <= 0.4 (a') | CGAL-S (b) | WJ pipeline | ratio a | ratio b | ratio a' | WJ / (a) <= 0.5? |\n"
-       << "| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
-    std::size_t met_a = 0, met_b = 0, met_a2 = 0;
-    for(const auto& S : surfaces)
-    {
-      const Pipe_result* a = best(S->name(), target_sigma, {PIPE_PLAIN}, 0.2);
-      const Pipe_result* a2 = best(S->name(), target_sigma, {PIPE_PLAIN}, 0.4);
-      const Pipe_result* b = best(S->name(), target_sigma, {PIPE_CGAL_S}, 0.2);
-      const Pipe_result* w = best(S->name(), target_sigma, {PIPE_WJ, PIPE_WJ_T}, 0.2);
-      const bool ok_a = a && w && w->res.H <= 0.5 * a->res.H, ok_b = b && w && w->res.H <= 0.5 * b->res.H,
-                 ok_a2 = a2 && w && w->res.H <= 0.5 * a2->res.H;
-      met_a += ok_a; met_b += ok_b; met_a2 += ok_a2;
-      md << "| " << S->name() << " | " << H_of(a) << " (" << (a ? config(*a) : "-") << ") | " << H_of(a2) << " ("
-         << (a2 ? config(*a2) : "-") << ") | " << H_of(b) << " (" << (b ? config(*b) : "-") << ") | " << H_of(w) << " ("
-         << (w ? std::string(pipe_name[w->method]) + ", " + config(*w) : "-") << ") | " << ratio(w, a) << " | "
-         << ratio(w, b) << " | " << ratio(w, a2) << " | " << (ok_a ? "yes" : "no") << " |\n";
-    }
-    md << "\nAt most half the H RMSE: against plain CGAL jets (a) on " << met_a << " / " << surfaces.size()
-       << " surfaces; against CGAL smoothing + jets (b) on " << met_b << " / " << surfaces.size()
-       << "; against plain CGAL jets with radii up to 0.4 (a') on " << met_a2 << " / " << surfaces.size() << ".\n\n";
-
-    // passes
-    md << "### sigma = 0.5%: one pass or two\n\nBest H RMSE with exactly 1 / 2 denoising passes (rest of the grid free).\n\n"
-       << "| surface | WJ 1 pass | WJ 2 passes | CGAL-S 1 pass | CGAL-S 2 passes |\n| --- | --- | --- | --- | --- |\n";
-    for(const auto& S : surfaces)
-      md << "| " << S->name() << " | " << H_of(best(S->name(), target_sigma, {PIPE_WJ, PIPE_WJ_T}, 0.2, 1)) << " | "
-         << H_of(best(S->name(), target_sigma, {PIPE_WJ, PIPE_WJ_T}, 0.2, 2)) << " | "
-         << H_of(best(S->name(), target_sigma, {PIPE_CGAL_S}, 0.2, 1)) << " | "
-         << H_of(best(S->name(), target_sigma, {PIPE_CGAL_S}, 0.2, 2)) << " |\n";
-    md << "\n";
-
-    // common setting
-    const Common cw = common_best(PIPE_WJ, target_sigma), cwt = common_best(PIPE_WJ_T, target_sigma),
-                 cc = common_best(PIPE_CGAL_S, target_sigma);
-    const Common& cbest = (cwt.proto && cwt.score < cw.score) ? cwt : cw;
-    md << "### One setting for every surface\n\nThe single grid setting of each pipeline with the smallest geometric mean,"
-          " over the six surfaces at sigma = 0.5%, of its H RMSE divided by plain CGAL's best (r <= 0.2): WJ: "
-       << (cbest.proto ? std::string(pipe_name[cbest.proto->method]) + ", " + config(*cbest.proto) : "-") << " (geometric mean ratio "
-       << fmt(std::exp(cbest.score)) << "); CGAL-S: " << (cc.proto ? config(*cc.proto) : "-") << " (" << fmt(std::exp(cc.score))
-       << "). Those two settings at every noise level (H RMSE; plain CGAL: its best over D in {2, 3}, r <= 0.2, at that noise"
-          " level); 'residual' = RMS distance of all inliers to the surface after denoising (input: before).\n\n"
-       << "| surface | sigma % | plain CGAL (a) | residual input | WJ | residual WJ | CGAL-S | residual CGAL-S | WJ / (a) | WJ / CGAL-S |\n"
-       << "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
-    for(const auto& S : surfaces)
-      for(double sigma : sigmas)
-      {
-        const Pipe_result* a = best(S->name(), sigma, {PIPE_PLAIN}, 0.2);
-        const Pipe_result* w = cbest.proto ? find_config(*cbest.proto, S->name(), sigma) : nullptr;
-        const Pipe_result* c = cc.proto ? find_config(*cc.proto, S->name(), sigma) : nullptr;
-        md << "| " << S->name() << " | " << sigma << " | " << H_of(a) << " | " << (a ? fmt(a->residual) : "-") << " | "
-           << H_of(w) << " | " << (w ? fmt(w->residual) : "-") << " | " << H_of(c) << " | " << (c ? fmt(c->residual) : "-")
-           << " | " << ratio(w, a) << " | " << ratio(w, c) << " |\n";
-      }
-    md << "\n";
-
-    // The point-set functions themselves on all points at the common WJ setting (sigma = 0.5%).
-    if(cbest.proto)
-    {
-      const Pipe_result& c = *cbest.proto;
-      md << "The point-set functions on all " << o.points << " points at that WJ setting (sigma = 0.5%): "
-         << c.passes << " x `wavejet_enhance_positions<Parallel_if_available_tag>(points, 0, 1.0, order(" << c.K1
-         << ").neighbor_radius(" << c.r1 << "))`, then `wavejet_estimate_curvatures(points, 0, order(" << c.K2
-         << ").neighbor_radius(" << c.r2 << ")" << (c.method == PIPE_WJ_T ? ".curvature_frame(TANGENT_FRAME)" : "")
-         << ".normal_map(...)...)` (original samples' normals, orienting only). H RMSE over all inliers at least r2 from a"
-            " border; 'max diff': largest |H| difference from the Wavejet_fitting values of the grid at the evaluation points"
-            " (expected 0).\n\n| surface | H RMSE (all points) | H RMSE (grid, eval points) | max diff | time (s) |\n"
-            "| --- | --- | --- | --- | --- |\n";
-      for(std::size_t s = 0; s < surfaces.size(); ++s)
-      {
-        const WB::Surface& S = *surfaces[s];
-        const Dataset d = make_dataset(S, s, o, target_sigma, 0.);
-        CGAL::Real_timer t;
-        t.start();
-        std::vector<Point> pts = d.points;
-        for(int pass = 0; pass < c.passes; ++pass)
-          CGAL::wavejet_enhance_positions<Tag>(pts, 0, 1.0, WP::order(c.K1).neighbor_radius(c.r1));
-        std::vector<Vector> normals;
-        for(const WB::Sample& x : d.samples) normals.emplace_back(x.truth.normal.x(), x.truth.normal.y(), x.truth.normal.z());
-        std::vector<std::size_t> idx(pts.size());
-        for(std::size_t i = 0; i < idx.size(); ++i) idx[i] = i;
-        std::vector<double> H(pts.size(), std::numeric_limits<double>::quiet_NaN());
-        const auto frame = c.method == PIPE_WJ_T ? CGAL::Wavejets::Curvature_frame::TANGENT_FRAME
-                                                 : CGAL::Wavejets::Curvature_frame::INITIAL_FRAME;
-        CGAL::wavejet_estimate_curvatures<Tag>(idx, 0,
-          WP::order(c.K2).curvature_frame(frame).mean_curvature_map(CGAL::make_property_map(H))
-            .neighbor_radius(c.r2).point_map(CGAL::make_property_map(pts)).normal_map(CGAL::make_property_map(normals)));
-        const double seconds = t.time();
-        WB::Error_accumulator a;
-        for(std::size_t i = 0; i < pts.size(); ++i)
-        {
-          if(!d.samples[i].inlier || d.samples[i].boundary_distance <= c.r2) continue;
-          if(!std::isfinite(H[i])) { ++a.failed; continue; }
-          const WB::Truth t = S.truth(S.surface_point(WB::V3(pts[i].x(), pts[i].y(), pts[i].z())));
-          a.add_curvature(H[i], 0., 0., 0., t);
-        }
-        const Dataset m = moved_dataset(d, pts, S, nullptr);
-        const std::vector<Estimate> ev = run_estimator(c.method == PIPE_WJ_T ? WJ_T : WJ, m, gather(m, c.r2), c.K2, c.r2);
-        double max_diff = 0.;
-        for(std::size_t i = 0; i < ev.size(); ++i)
-          if(ev[i].ok) max_diff = std::max(max_diff, std::abs((c.method == PIPE_WJ_T ? ev[i].tH : ev[i].H) - H[d.eval[i]]));
-        const Pipe_result* g = find_config(c, S.name(), target_sigma);
-        md << "| " << S.name() << " | " << fmt(a.rmse_H()) << " | " << H_of(g) << " | " << fmt(max_diff, 2) << " | "
-           << fmt(seconds) << " |\n";
-      }
-      md << "\n";
-    }
-
-    // target block
-    tg << "<!-- pipeline-target-begin -->\n**Noisy data, documented denoise-then-estimate pipeline** (section \"Noisy scans:"
-          " denoise, then estimate\"; best pipeline setting per surface at sigma = 0.5%): WJ H RMSE <= half of plain CGAL"
-          " jets' (same radii/degrees) on "
-       << met_a << " / " << surfaces.size() << " surfaces"
-       << (met_a == surfaces.size() ? " — **met against plain CGAL jets**" : met_a ? " — **partly met against plain CGAL jets**" : " — **not met**")
-       << "; against CGAL's own smoothing + jets (the same two-pass recipe) on " << met_b << " / " << surfaces.size()
-       << " (" << (met_b == 0 ? "**not met**: the gain comes from smoothing, not from Wavejets" : "see the table") << ");"
-          " against plain CGAL jets allowed radii up to 0.4 on " << met_a2 << " / " << surfaces.size() << ".\n"
-       << "<!-- pipeline-target-end -->";
+    const Pipe_result* a = best(S->name(), target_sigma, {PIPE_PLAIN}, 0.2);
+    const Pipe_result* a2 = best(S->name(), target_sigma, {PIPE_PLAIN}, 0.4);
+    const Pipe_result* b = best(S->name(), target_sigma, {PIPE_CGAL_S}, 0.2);
+    const Pipe_result* w = best(S->name(), target_sigma, {PIPE_WJ, PIPE_WJ_T}, 0.2);
+    const bool ok_a = a && w && w->res.H <= 0.5 * a->res.H, ok_b = b && w && w->res.H <= 0.5 * b->res.H,
+               ok_a2 = a2 && w && w->res.H <= 0.5 * a2->res.H;
+    met.a += ok_a; met.b += ok_b; met.a2 += ok_a2;
+    md << "| " << S->name() << " | " << H_of(a) << " (" << (a ? config(*a) : "-") << ") | " << H_of(a2) << " ("
+       << (a2 ? config(*a2) : "-") << ") | " << H_of(b) << " (" << (b ? config(*b) : "-") << ") | " << H_of(w) << " ("
+       << (w ? std::string(pipe_name[w->method]) + ", " + config(*w) : "-") << ") | " << H_ratio(w, a) << " | "
+       << H_ratio(w, b) << " | " << H_ratio(w, a2) << " | " << (ok_a ? "yes" : "no") << " |\n";
   }
+  md << "\nAt most half the H RMSE: against plain CGAL jets (a) on " << met.a << " / " << surfaces.size()
+     << " surfaces; against CGAL smoothing + jets (b) on " << met.b << " / " << surfaces.size()
+     << "; against plain CGAL jets with radii up to 0.4 (a') on " << met.a2 << " / " << surfaces.size() << ".\n\n";
+  return met;
+}
 
-  // sigma = 0.5%: WJ and WJ-T separately
+void Noisy_pipeline::write_passes(std::ostream& md) const
+{
+  md << "### sigma = 0.5%: one pass or two\n\nBest H RMSE with exactly 1 / 2 denoising passes (rest of the grid free).\n\n"
+     << "| surface | WJ 1 pass | WJ 2 passes | CGAL-S 1 pass | CGAL-S 2 passes |\n| --- | --- | --- | --- | --- |\n";
+  for(const auto& S : surfaces)
+    md << "| " << S->name() << " | " << H_of(best(S->name(), target_sigma, {PIPE_WJ, PIPE_WJ_T}, 0.2, 1)) << " | "
+       << H_of(best(S->name(), target_sigma, {PIPE_WJ, PIPE_WJ_T}, 0.2, 2)) << " | "
+       << H_of(best(S->name(), target_sigma, {PIPE_CGAL_S}, 0.2, 1)) << " | "
+       << H_of(best(S->name(), target_sigma, {PIPE_CGAL_S}, 0.2, 2)) << " |\n";
+  md << "\n";
+}
+
+/// Table "One setting for every surface"; returns the common WJ setting (best of WJ and WJ-T).
+Noisy_pipeline::Common Noisy_pipeline::write_common_setting(std::ostream& md) const
+{
+  const Common cw = common_best(PIPE_WJ, target_sigma), cwt = common_best(PIPE_WJ_T, target_sigma),
+               cc = common_best(PIPE_CGAL_S, target_sigma);
+  const Common& cbest = (cwt.proto && cwt.score < cw.score) ? cwt : cw;
+  md << "### One setting for every surface\n\nThe single grid setting of each pipeline with the smallest geometric mean,"
+        " over the six surfaces at sigma = 0.5%, of its H RMSE divided by plain CGAL's best (r <= 0.2): WJ: "
+     << (cbest.proto ? std::string(pipe_name[cbest.proto->method]) + ", " + config(*cbest.proto) : "-") << " (geometric mean ratio "
+     << fmt(std::exp(cbest.score)) << "); CGAL-S: " << (cc.proto ? config(*cc.proto) : "-") << " (" << fmt(std::exp(cc.score))
+     << "). Those two settings at every noise level (H RMSE; plain CGAL: its best over D in {2, 3}, r <= 0.2, at that noise"
+        " level); 'residual' = RMS distance of all inliers to the surface after denoising (input: before).\n\n"
+     << "| surface | sigma % | plain CGAL (a) | residual input | WJ | residual WJ | CGAL-S | residual CGAL-S | WJ / (a) | WJ / CGAL-S |\n"
+     << "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+  for(const auto& S : surfaces)
+    for(double sigma : sigmas)
+    {
+      const Pipe_result* a = best(S->name(), sigma, {PIPE_PLAIN}, 0.2);
+      const Pipe_result* w = cbest.proto ? find_config(*cbest.proto, S->name(), sigma) : nullptr;
+      const Pipe_result* c = cc.proto ? find_config(*cc.proto, S->name(), sigma) : nullptr;
+      md << "| " << S->name() << " | " << sigma << " | " << H_of(a) << " | " << (a ? fmt(a->residual) : "-") << " | "
+         << H_of(w) << " | " << (w ? fmt(w->residual) : "-") << " | " << H_of(c) << " | " << (c ? fmt(c->residual) : "-")
+         << " | " << H_ratio(w, a) << " | " << H_ratio(w, c) << " |\n";
+    }
+  md << "\n";
+  return cbest;
+}
+
+/// The point-set functions themselves on all points at the common WJ setting `c` (sigma = 0.5%).
+void Noisy_pipeline::write_point_set_check(std::ostream& md, const Pipe_result& c) const
+{
+  md << "The point-set functions on all " << o.points << " points at that WJ setting (sigma = 0.5%): "
+     << c.passes << " x `wavejet_enhance_positions<Parallel_if_available_tag>(points, 0, 1.0, order(" << c.K1
+     << ").neighbor_radius(" << c.r1 << "))`, then `wavejet_estimate_curvatures(points, 0, order(" << c.K2
+     << ").neighbor_radius(" << c.r2 << ")" << (c.method == PIPE_WJ_T ? ".curvature_frame(TANGENT_FRAME)" : "")
+     << ".normal_map(...)...)` (original samples' normals, orienting only). H RMSE over all inliers at least r2 from a"
+        " border; 'max diff': largest |H| difference from the Wavejet_fitting values of the grid at the evaluation points"
+        " (expected 0).\n\n| surface | H RMSE (all points) | H RMSE (grid, eval points) | max diff | time (s) |\n"
+        "| --- | --- | --- | --- | --- |\n";
+  for(std::size_t s = 0; s < surfaces.size(); ++s) md << point_set_check_row(s, c);
+  md << "\n";
+}
+
+std::string Noisy_pipeline::point_set_check_row(std::size_t s, const Pipe_result& c) const
+{
+  const WB::Surface& S = *surfaces[s];
+  const Dataset d = make_dataset(S, s, o, target_sigma, 0.);
+  CGAL::Real_timer t;
+  t.start();
+  std::vector<Point> pts = d.points;
+  for(int pass = 0; pass < c.passes; ++pass)
+    CGAL::wavejet_enhance_positions<Tag>(pts, 0, 1.0, WP::order(c.K1).neighbor_radius(c.r1));
+  std::vector<Vector> normals;
+  for(const WB::Sample& x : d.samples) normals.emplace_back(x.truth.normal.x(), x.truth.normal.y(), x.truth.normal.z());
+  std::vector<std::size_t> idx(pts.size());
+  for(std::size_t i = 0; i < idx.size(); ++i) idx[i] = i;
+  std::vector<double> H(pts.size(), std::numeric_limits<double>::quiet_NaN());
+  const auto frame = c.method == PIPE_WJ_T ? CGAL::Wavejets::Curvature_frame::TANGENT_FRAME
+                                           : CGAL::Wavejets::Curvature_frame::INITIAL_FRAME;
+  CGAL::wavejet_estimate_curvatures<Tag>(idx, 0,
+    WP::order(c.K2).curvature_frame(frame).mean_curvature_map(CGAL::make_property_map(H))
+      .neighbor_radius(c.r2).point_map(CGAL::make_property_map(pts)).normal_map(CGAL::make_property_map(normals)));
+  const double seconds = t.time();
+  WB::Error_accumulator a;
+  for(std::size_t i = 0; i < pts.size(); ++i)
+  {
+    if(!d.samples[i].inlier || d.samples[i].boundary_distance <= c.r2) continue;
+    if(!std::isfinite(H[i])) { ++a.failed; continue; }
+    const WB::Truth truth = S.truth(S.surface_point(WB::V3(pts[i].x(), pts[i].y(), pts[i].z())));
+    a.add_curvature(H[i], 0., 0., 0., truth);
+  }
+  const Dataset m = moved_dataset(d, pts, S, nullptr);
+  const std::vector<Estimate> ev = run_estimator(c.method == PIPE_WJ_T ? WJ_T : WJ, m, gather(m, c.r2), c.K2, c.r2);
+  double max_diff = 0.;
+  for(std::size_t i = 0; i < ev.size(); ++i)
+    if(ev[i].ok) max_diff = std::max(max_diff, std::abs((c.method == PIPE_WJ_T ? ev[i].tH : ev[i].H) - H[d.eval[i]]));
+  const Pipe_result* g = find_config(c, S.name(), target_sigma);
+  std::ostringstream row;
+  row << "| " << S.name() << " | " << fmt(a.rmse_H()) << " | " << H_of(g) << " | " << fmt(max_diff, 2) << " | "
+      << fmt(seconds) << " |\n";
+  return row.str();
+}
+
+/// The pipeline's line in the section "Targets".
+std::string Noisy_pipeline::target_block(const Targets_met& met) const
+{
+  std::ostringstream tg;
+  tg << "<!-- pipeline-target-begin -->\n**Noisy data, documented denoise-then-estimate pipeline** (section \"Noisy scans:"
+        " denoise, then estimate\"; best pipeline setting per surface at sigma = 0.5%): WJ H RMSE <= half of plain CGAL"
+        " jets' (same radii/degrees) on "
+     << met.a << " / " << surfaces.size() << " surfaces"
+     << (met.a == surfaces.size() ? " — **met against plain CGAL jets**" : met.a ? " — **partly met against plain CGAL jets**" : " — **not met**")
+     << "; against CGAL's own smoothing + jets (the same two-pass recipe) on " << met.b << " / " << surfaces.size()
+     << " (" << (met.b == 0 ? "**not met**: the gain comes from smoothing, not from Wavejets" : "see the table") << ");"
+        " against plain CGAL jets allowed radii up to 0.4 on " << met.a2 << " / " << surfaces.size() << ".\n"
+     << "<!-- pipeline-target-end -->";
+  return tg.str();
+}
+
+/// sigma = 0.5%: WJ and WJ-T separately, then the run times; closes the section.
+void Noisy_pipeline::write_all_pipelines(std::ostream& md) const
+{
   md << "### sigma = 0.5%: all pipelines, best setting per surface\n\n"
      << "| surface | sigma % | plain CGAL (a) | plain CGAL r <= 0.4 (a') | CGAL-S (b) | WJ | WJ-T | WJ / (a) | WJ / (b) |\n"
      << "| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+  auto cell = [&](const Pipe_result* x) { return x ? fmt(x->res.H) + " (" + config(*x) + ")" : std::string("-"); };
   for(const auto& S : surfaces)
-    for(double sigma : {target_sigma})
-    {
-      const Pipe_result* a = best(S->name(), sigma, {PIPE_PLAIN}, 0.2);
-      const Pipe_result* a2 = best(S->name(), sigma, {PIPE_PLAIN}, 0.4);
-      const Pipe_result* b = best(S->name(), sigma, {PIPE_CGAL_S}, 0.2);
-      const Pipe_result* w = best(S->name(), sigma, {PIPE_WJ}, 0.2);
-      const Pipe_result* wt = best(S->name(), sigma, {PIPE_WJ_T}, 0.2);
-      const Pipe_result* wb = (wt && (!w || wt->res.H < w->res.H)) ? wt : w;
-      auto cell = [&](const Pipe_result* x) { return x ? fmt(x->res.H) + " (" + config(*x) + ")" : std::string("-"); };
-      md << "| " << S->name() << " | " << sigma << " | " << cell(a) << " | " << cell(a2) << " | " << cell(b) << " | "
-         << cell(w) << " | " << cell(wt) << " | " << ratio(wb, a) << " | " << ratio(wb, b) << " |\n";
-    }
+  {
+    const double sigma = target_sigma;
+    const Pipe_result* a = best(S->name(), sigma, {PIPE_PLAIN}, 0.2);
+    const Pipe_result* a2 = best(S->name(), sigma, {PIPE_PLAIN}, 0.4);
+    const Pipe_result* b = best(S->name(), sigma, {PIPE_CGAL_S}, 0.2);
+    const Pipe_result* w = best(S->name(), sigma, {PIPE_WJ}, 0.2);
+    const Pipe_result* wt = best(S->name(), sigma, {PIPE_WJ_T}, 0.2);
+    const Pipe_result* wb = (wt && (!w || wt->res.H < w->res.H)) ? wt : w;
+    md << "| " << S->name() << " | " << sigma << " | " << cell(a) << " | " << cell(a2) << " | " << cell(b) << " | "
+       << cell(w) << " | " << cell(wt) << " | " << H_ratio(wb, a) << " | " << H_ratio(wb, b) << " |\n";
+  }
   md << "\nTime: Wavejet denoising " << fmt(seconds_wj) << " s (" << wj_unfitted << " point-fits not fitted, " << wj_clamped
      << " clamped, over all passes), CGAL jet smoothing " << fmt(seconds_cgal) << " s, estimation at the evaluation points "
      << fmt(seconds_est) << " s. All rows: `accuracy_pipeline.dat`.\n<!-- noisy-pipeline-end -->";
+}
 
-  // data file: every row
+/// accuracy_pipeline.dat: every row.
+std::string Noisy_pipeline::data_file() const
+{
   std::ostringstream dat;
   dat << "# surface sigma_pct method K1 r1 passes K2 r2 H_rmse K_rmse k1_rmse k2_rmse angle_mean not_fitted residual\n";
   for(const Pipe_result& x : rows)
     dat << x.surface << " " << x.sigma << " " << pipe_dat_name[x.method] << " " << x.K1 << " " << x.r1 << " " << x.passes << " "
         << x.K2 << " " << x.r2 << " " << x.res.H << " " << x.res.K << " " << x.res.k1 << " " << x.res.k2 << " "
         << x.res.mean_angle << " " << x.res.failed << " " << x.residual << "\n";
-  out.block = md.str();
-  out.target = tg.str();
-  out.dat = dat.str();
-  return out;
+  return dat.str();
 }
 
 // ---------------------------------------------------------------------------------------------
+// Command line
 
-int main(int argc, char** argv)
+/// Reads the options; returns false when the program should stop at once with `exit_code`.
+static bool parse_command_line(int argc, char** argv, Options& o, int& exit_code)
 {
-  Options o;
   {
     std::string self = __FILE__;
     o.out = self.substr(0, self.find_last_of('/'));
@@ -824,7 +911,8 @@ int main(int argc, char** argv)
                    "  --quick: 8000 points, 100 evaluation points, K in {2,4,6}, sigma in {0, 0.5%}\n"
                    "  --noisy-pipeline: also run the denoise-then-estimate section (sigma 0.5% only with --quick)\n"
                    "  --noisy-pipeline-only: run only that section, merge it into the existing DIR/accuracy.md\n";
-      return a == "--help" || a == "-h" ? 0 : 1;
+      exit_code = a == "--help" || a == "-h" ? 0 : 1;
+      return false;
     }
   }
   if(o.quick)
@@ -833,86 +921,139 @@ int main(int argc, char** argv)
     if(!eval_given) o.eval = 100;
   }
   o.command = cmd.str();
-  if(o.points < 1000 || o.eval < 10) { std::cerr << "need --points >= 1000 and --eval >= 10\n"; return 1; }
+  if(o.points < 1000 || o.eval < 10) { std::cerr << "need --points >= 1000 and --eval >= 10\n"; exit_code = 1; return false; }
+  return true;
+}
 
-  CGAL::Real_timer total;
-  total.start();
-  const auto surfaces = WB::all_surfaces();
+// ---------------------------------------------------------------------------------------------
+// Blocks of an existing report, kept across runs
 
-  // Blocks kept from an existing report when they are not regenerated.
-  std::string old_report;
+static std::string read_text_file(const std::string& path)
+{
+  std::ifstream f(path);
+  std::stringstream buf;
+  buf << f.rdbuf();
+  return buf.str();
+}
+
+/// The block `<!-- name-begin -->` ... `<!-- name-end -->` of `text`, markers included; empty if absent.
+static std::string marked_block(const std::string& text, const std::string& name)
+{
+  const std::string begin = "<!-- " + name + "-begin -->", end = "<!-- " + name + "-end -->";
+  const std::size_t b = text.find(begin), e = text.find(end);
+  if(b != std::string::npos && e != std::string::npos && e > b) return text.substr(b, e + end.size() - b);
+  return std::string();
+}
+
+/// Replaces the block `name` of `text` by `block`, or inserts it before `before` (at the end if absent).
+static void put_block(std::string& text, const std::string& name, const std::string& block, const std::string& before)
+{
+  if(block.empty()) return;
+  const std::string begin = "<!-- " + name + "-begin -->", end = "<!-- " + name + "-end -->";
+  const std::size_t b = text.find(begin), e = text.find(end);
+  if(b != std::string::npos && e != std::string::npos && e > b) text.replace(b, e + end.size() - b, block);
+  else
   {
-    std::ifstream old(o.out + "/accuracy.md");
-    std::stringstream buf;
-    buf << old.rdbuf();
-    old_report = buf.str();
+    const std::size_t at = text.find(before);
+    if(at == std::string::npos) text += "\n" + block + "\n";
+    else text.insert(at, block + "\n\n");
   }
-  auto old_block = [&](const std::string& name) -> std::string {
-    const std::string begin = "<!-- " + name + "-begin -->", end = "<!-- " + name + "-end -->";
-    const std::size_t b = old_report.find(begin), e = old_report.find(end);
-    if(b != std::string::npos && e != std::string::npos && e > b) return old_report.substr(b, e + end.size() - b);
-    return std::string();
-  };
-  Pipe_output pipe;
-  if(o.pipeline)
-  {
-    pipe = noisy_pipeline(o, surfaces);
-    std::ofstream(o.out + "/accuracy_pipeline.dat") << pipe.dat;
-  }
-  if(o.pipeline_only)
-  {
-    // Merge into the existing report: replace the blocks, or insert them at their places.
-    std::string text = old_report;
-    if(text.empty()) text = "# Accuracy of Wavejets against CGAL jets on surfaces with exact curvature\n\n";
-    auto put_block = [&](const std::string& name, const std::string& block, const std::string& before) {
-      if(block.empty()) return;
-      const std::string begin = "<!-- " + name + "-begin -->", end = "<!-- " + name + "-end -->";
-      const std::size_t b = text.find(begin), e = text.find(end);
-      if(b != std::string::npos && e != std::string::npos && e > b) text.replace(b, e + end.size() - b, block);
-      else
-      {
-        const std::size_t at = text.find(before);
-        if(at == std::string::npos) text += "\n" + block + "\n";
-        else text.insert(at, block + "\n\n");
-      }
-    };
-    put_block("pipeline-target", pipe.target, "Time spent per estimator in the position-noise sweep");
-    put_block("noisy-pipeline", pipe.block, "## Which settings to use");
-    std::ofstream(o.out + "/accuracy.md") << text;
-    std::cout << "merged the noisy-pipeline section into " << o.out << "/accuracy.md (" << pipe.seconds << " s)\n";
-    return 0;
-  }
-  if(!o.pipeline)
-  {
-    pipe.block = old_block("noisy-pipeline");
-    pipe.target = old_block("pipeline-target");
-  }
-  const std::vector<double> sigmas = o.quick ? std::vector<double>{0., 0.5} : std::vector<double>{0., 0.25, 0.5, 1.};
-  const std::vector<double> radii = {0.05, 0.1, 0.2};
-  const std::vector<std::size_t> orders = o.quick ? std::vector<std::size_t>{2, 4, 6}
-                                                  : std::vector<std::size_t>{2, 3, 4, 5, 6, 7, 8};
+}
+
+/// --noisy-pipeline-only: merges the section and its target line into the existing report.
+static void merge_pipeline_section(const Options& o, const std::string& old_report, const Pipe_output& pipe)
+{
+  std::string text = old_report;
+  if(text.empty()) text = "# Accuracy of Wavejets against CGAL jets on surfaces with exact curvature\n\n";
+  put_block(text, "pipeline-target", pipe.target, "Time spent per estimator in the position-noise sweep");
+  put_block(text, "noisy-pipeline", pipe.block, "## Which settings to use");
+  std::ofstream(o.out + "/accuracy.md") << text;
+  std::cout << "merged the noisy-pipeline section into " << o.out << "/accuracy.md (" << pipe.seconds << " s)\n";
+}
+
+// ---------------------------------------------------------------------------------------------
+// Experiments 1-4
+
+/// Best H RMSE of an estimator (set) over a (K, r) grid.
+struct Best { double H = 1e300; std::size_t K = 0; int e = 0; double r = 0; };
+struct Seed_row { std::string surface; double deg; Result orient, seed, seed_t, cgal; };
+struct Ps_row { std::string surface, setting; double sigma; Result wj, cgal; double max_diff; std::size_t unfitted; double seconds; };
+
+/// The grids of the experiments and everything they measured.
+struct Experiments
+{
+  explicit Experiments(bool quick)
+    : sigmas(quick ? std::vector<double>{0., 0.5} : std::vector<double>{0., 0.25, 0.5, 1.}),
+      orders(quick ? std::vector<std::size_t>{2, 4, 6} : std::vector<std::size_t>{2, 3, 4, 5, 6, 7, 8})
+  {}
+
+  // experiment 1: position noise x radius x order x estimator
+  const std::vector<double> sigmas, radii = {0.05, 0.1, 0.2};
+  const std::vector<std::size_t> orders;
+  // experiment 2: outliers (sigma = 0 and 0.5%, r = 0.1 and 0.2, K = 2 and 4)
+  const std::vector<double> outlier_fractions = {0., 0.05, 0.1}, out_sigmas = {0., 0.5}, out_radii = {0.1, 0.2};
+  const std::vector<std::size_t> out_orders = {2, 4};
+
   std::map<Key, Result> R;
   std::map<std::pair<std::string, double>, double> mean_neighbors; // (surface, r) -> mean L (clean)
   double seconds[NUM_ESTIMATORS] = {0, 0, 0, 0, 0, 0};
+  std::vector<Seed_row> seed_rows; // experiment 3
+  std::vector<Ps_row> ps_rows;     // experiment 4
 
-  // ---- Experiment 1: position noise x radius x order x estimator --------------------------------
+  /// Result of experiment 1 (no outliers).
+  const Result& get(const std::string& S, double sigma, double r, std::size_t K, int e) const
+  {
+    return R.at({S, sigma, 0., r, K, e});
+  }
+  Best best_of(const std::string& S, double sigma, const std::vector<double>& rs, const std::vector<int>& es) const
+  {
+    Best b;
+    for(double r : rs)
+      for(std::size_t K : orders)
+        for(int e : es)
+        {
+          const Result& x = get(S, sigma, r, K, e);
+          if(usable(x) && x.H < b.H) { b.H = x.H; b.K = K; b.e = e; b.r = r; }
+        }
+    return b;
+  }
+  /// Smallest mean normal angle of `e` over (K, r) in experiment 1, and where.
+  double best_angle(const std::string& S, double sigma, int e, double* r_best = nullptr, std::size_t* K_best = nullptr) const
+  {
+    double best = 1e300, br = 0;
+    std::size_t bk = 0;
+    for(double r : radii)
+      for(std::size_t K : (e == PCA ? std::vector<std::size_t>{0} : orders))
+      {
+        const Result& x = get(S, sigma, r, K, e);
+        if(x.mean_angle < best) { best = x.mean_angle; br = r; bk = K; }
+      }
+    if(r_best) *r_best = br;
+    if(K_best) *K_best = bk;
+    return best;
+  }
+};
+
+/// Experiment 1: position noise x radius x order x estimator.
+static void run_position_noise(const Options& o, const Surfaces& surfaces, Experiments& ex, const CGAL::Real_timer& total)
+{
   for(std::size_t s = 0; s < surfaces.size(); ++s)
   {
     const WB::Surface& S = *surfaces[s];
-    for(double sigma : sigmas)
+    for(double sigma : ex.sigmas)
     {
       CGAL::Real_timer t;
       t.start();
       const Dataset d = make_dataset(S, s, o, sigma, 0.);
-      for(double r : radii)
+      for(double r : ex.radii)
       {
         const Neighborhoods nh = gather(d, r);
         std::size_t minL = std::size_t(-1);
         double sumL = 0;
         for(const auto& v : nh.pts) { minL = std::min(minL, v.size()); sumL += double(v.size()); }
-        if(sigma == 0.) mean_neighbors[{S.name(), r}] = sumL / double(nh.pts.size());
-        R[{S.name(), sigma, 0., r, 0, PCA}] = evaluate(run_estimator(PCA, d, nh, 2, r), d, false);
-        for(std::size_t K : orders)
+        if(sigma == 0.) ex.mean_neighbors[{S.name(), r}] = sumL / double(nh.pts.size());
+        ex.R[{S.name(), sigma, 0., r, 0, PCA}] = evaluate(run_estimator(PCA, d, nh, 2, r), d, false);
+        for(std::size_t K : ex.orders)
         {
           std::size_t reduced = 0;
           for(const auto& v : nh.pts) reduced += double(v.size()) < 1.1 * double(coefficients(K));
@@ -921,57 +1062,57 @@ int main(int argc, char** argv)
             CGAL::Real_timer te;
             te.start();
             const std::vector<Estimate> est = run_estimator(Estimator(e), d, nh, K, r);
-            seconds[e] += te.time();
+            ex.seconds[e] += te.time();
             Result res = evaluate(est, d, true);
             res.reduced = reduced;
-            R[{S.name(), sigma, 0., r, K, e}] = res;
+            ex.R[{S.name(), sigma, 0., r, K, e}] = res;
             if(e == WJ)
             {
               res = evaluate(est, d, true, true);
               res.reduced = reduced;
-              R[{S.name(), sigma, 0., r, K, WJ_T}] = res;
+              ex.R[{S.name(), sigma, 0., r, K, WJ_T}] = res;
             }
           }
           // Adaptive order only acts where a neighborhood is too small for K; elsewhere WJ-fix == WJ.
           if(double(minL) < 1.1 * double(coefficients(K)))
-            R[{S.name(), sigma, 0., r, K, WJ_FIX}] = evaluate(run_estimator(WJ_FIX, d, nh, K, r), d, true);
+            ex.R[{S.name(), sigma, 0., r, K, WJ_FIX}] = evaluate(run_estimator(WJ_FIX, d, nh, K, r), d, true);
           else
-            R[{S.name(), sigma, 0., r, K, WJ_FIX}] = R[{S.name(), sigma, 0., r, K, WJ}];
+            ex.R[{S.name(), sigma, 0., r, K, WJ_FIX}] = ex.R[{S.name(), sigma, 0., r, K, WJ}];
         }
       }
       std::cerr << S.name() << " sigma " << sigma << "%: " << t.time() << " s (total " << total.time() << " s)\n";
     }
   }
+}
 
-  // ---- Experiment 2: outliers (sigma = 0 and 0.5%, r = 0.1 and 0.2, K = 2 and 4) -----------------
-  const std::vector<double> outlier_fractions = {0., 0.05, 0.1};
-  const std::vector<double> out_sigmas = {0., 0.5};
-  const std::vector<double> out_radii = {0.1, 0.2};
-  const std::vector<std::size_t> out_orders = {2, 4};
+/// Experiment 2: outliers.
+static void run_outliers(const Options& o, const Surfaces& surfaces, Experiments& ex, const CGAL::Real_timer& total)
+{
   for(std::size_t s = 0; s < surfaces.size(); ++s)
   {
     const WB::Surface& S = *surfaces[s];
-    for(double sigma : out_sigmas)
-      for(double of : outlier_fractions)
+    for(double sigma : ex.out_sigmas)
+      for(double of : ex.outlier_fractions)
       {
         if(of == 0.) continue; // already in experiment 1
         const Dataset d = make_dataset(S, s, o, sigma, of);
-        for(double r : out_radii)
+        for(double r : ex.out_radii)
         {
           const Neighborhoods nh = gather(d, r);
-          R[{S.name(), sigma, of, r, 0, PCA}] = evaluate(run_estimator(PCA, d, nh, 2, r), d, false);
-          for(std::size_t K : out_orders)
+          ex.R[{S.name(), sigma, of, r, 0, PCA}] = evaluate(run_estimator(PCA, d, nh, 2, r), d, false);
+          for(std::size_t K : ex.out_orders)
             for(int e : {WJ, WJ_R3, CGAL_JET})
-              R[{S.name(), sigma, of, r, K, e}] = evaluate(run_estimator(Estimator(e), d, nh, K, r), d, true);
+              ex.R[{S.name(), sigma, of, r, K, e}] = evaluate(run_estimator(Estimator(e), d, nh, K, r), d, true);
         }
       }
     std::cerr << S.name() << " outliers done (total " << total.time() << " s)\n";
   }
+}
 
-  // ---- Experiment 3: noisy seed normals (sigma = 0, r = 0.1, K = 4) ------------------------------
+/// Experiment 3: noisy seed normals (sigma = 0, r = 0.1, K = 4).
+static void run_seed_normals(const Options& o, const Surfaces& surfaces, Experiments& ex, const CGAL::Real_timer& total)
+{
   const std::vector<double> normal_noise_deg = {0., 5., 15., 30.};
-  struct Seed_row { std::string surface; double deg; Result orient, seed, seed_t, cgal; };
-  std::vector<Seed_row> seed_rows;
   for(std::size_t s = 0; s < surfaces.size(); ++s)
   {
     const WB::Surface& S = *surfaces[s];
@@ -990,201 +1131,183 @@ int main(int argc, char** argv)
       row.orient = evaluate(run_estimator(WJ, d, nh, K, r, seeds, false), d, true);
       row.seed = evaluate(run_estimator(WJ, d, nh, K, r, seeds, true), d, true);
       row.seed_t = evaluate(run_estimator(WJ_T, d, nh, K, r, seeds, true), d, true);
-      row.cgal = R[{S.name(), 0., 0., r, K, CGAL_JET}];
-      seed_rows.push_back(row);
+      row.cgal = ex.R[{S.name(), 0., 0., r, K, CGAL_JET}];
+      ex.seed_rows.push_back(row);
     }
   }
   std::cerr << "seed normals done (total " << total.time() << " s)\n";
+}
 
-  // ---- Targets and best settings -------------------------------------------------------------------
-  auto get = [&](const std::string& S, double sigma, double r, std::size_t K, int e) -> const Result& {
-    return R.at({S, sigma, 0., r, K, e});
-  };
-  // Clean: WJ (default) vs CGAL at every (surface, r, K).
-  std::size_t clean_total = 0, clean_h_ok = 0, clean_n_ok = 0;
-  std::ostringstream clean_violations;
-  double worst_rel = 0.;
-  for(const auto& S : surfaces)
-    for(double r : radii)
-      for(std::size_t K : orders)
-      {
-        const Result& w = get(S->name(), 0., r, K, WJ);
-        const Result& c = get(S->name(), 0., r, K, CGAL_JET);
-        ++clean_total;
-        const double tol = 1e-9 * (1. + c.H);
-        if(w.H <= c.H + tol) ++clean_h_ok;
-        else
-        {
-          clean_violations << "  - " << S->name() << " r=" << r << " K=" << K << ": H RMSE WJ " << fmt(w.H, 6)
-                           << " vs CGAL " << fmt(c.H, 6) << "\n";
-        }
-        worst_rel = std::max(worst_rel, std::abs(w.H - c.H) / std::max(c.H, 1e-300));
-        if(w.mean_angle <= c.mean_angle * (1. + 1e-9) + 1e-12) ++clean_n_ok;
-      }
+/// Outputs of the point-set functions on all points of a data set.
+struct Point_set_outputs
+{
+  std::vector<double> H, KG, k1, k2;
+  std::vector<Vector> normals;
+  std::vector<unsigned char> fitted;
+  std::size_t unfitted = 0;
+  double seconds = 0;
+};
 
-  // Noisy (sigma = 0.5%): best WJ setting vs best CGAL setting, per radius and overall.
-  struct Best { double H = 1e300; std::size_t K = 0; int e = 0; double r = 0; };
-  auto best_of = [&](const std::string& S, double sigma, const std::vector<double>& rs, const std::vector<int>& es) {
-    Best b;
-    for(double r : rs)
-      for(std::size_t K : orders)
-        for(int e : es)
-        {
-          const Result& x = get(S, sigma, r, K, e);
-          if(x.evaluated > 0 && x.failed * 100 <= x.evaluated + x.failed && x.H < b.H) { b.H = x.H; b.K = K; b.e = e; b.r = r; }
-        }
-    return b;
-  };
-  const std::vector<int> wj_set = {WJ, WJ_R3, WJ_T, WJ_FIX};
+/// wavejet_estimate_curvatures and wavejet_estimate_normals on all points of `d` at the setting `b`.
+static Point_set_outputs run_point_set_functions_on(const Dataset& d, const Best& b)
+{
+  // The range is the point indices; positions, normals and outputs live in index-keyed maps.
+  std::vector<std::size_t> idx(d.points.size());
+  for(std::size_t i = 0; i < idx.size(); ++i) idx[i] = i;
+  std::vector<Vector> true_normals;
+  for(const WB::Sample& x : d.samples) true_normals.emplace_back(x.truth.normal.x(), x.truth.normal.y(), x.truth.normal.z());
+  Point_set_outputs out;
+  out.normals = true_normals;
+  const std::size_t N = idx.size();
+  out.H.assign(N, 0.); out.KG.assign(N, 0.); out.k1.assign(N, 0.); out.k2.assign(N, 0.);
+  out.fitted.assign(N, 0);
+  CGAL::Real_timer t;
+  t.start();
+  const std::size_t rob = b.e == WJ_R3 ? 3 : 0;
+  const double npc = b.e == WJ_FIX ? 1.0 : 1.1;
+  const std::size_t mino = b.e == WJ_FIX ? b.K : 2;
+  const auto frame = b.e == WJ_T ? CGAL::Wavejets::Curvature_frame::TANGENT_FRAME
+                                 : CGAL::Wavejets::Curvature_frame::INITIAL_FRAME;
+  CGAL::wavejet_estimate_curvatures<Tag>(idx, 0,
+    WP::order(b.K).robust_iterations(rob).neighbors_per_coefficient(npc).minimum_order(mino).curvature_frame(frame)
+      .mean_curvature_map(CGAL::make_property_map(out.H)).gaussian_curvature_map(CGAL::make_property_map(out.KG))
+      .maximal_principal_curvature_map(CGAL::make_property_map(out.k1))
+      .minimal_principal_curvature_map(CGAL::make_property_map(out.k2))
+      .neighbor_radius(b.r).point_map(CGAL::make_property_map(d.points))
+      .normal_map(CGAL::make_property_map(true_normals)));
+  CGAL::Wavejets::Processing_report rep = CGAL::wavejet_estimate_normals<Tag>(idx, 0,
+    WP::order(b.K).robust_iterations(rob).neighbors_per_coefficient(npc).minimum_order(mino)
+      .orient_with_input_normals(true).fitted_map(CGAL::make_property_map(out.fitted))
+      .neighbor_radius(b.r).point_map(CGAL::make_property_map(d.points))
+      .normal_map(CGAL::make_property_map(out.normals)));
+  out.seconds = t.time();
+  out.unfitted = rep.number_of_unfitted_points;
+  return out;
+}
 
-  // ---- Experiment 4: the point-set functions on all N points at recommended settings ---------------
-  struct Ps_row { std::string surface, setting; double sigma; Result wj, cgal; double max_diff; std::size_t unfitted; double seconds; };
-  std::vector<Ps_row> ps_rows;
+/// One row of experiment 4: the point-set functions on all points of surface `s` at noise `sigma`, their agreement
+/// with Wavejet_fitting at the evaluation points, and CGAL jets on all points.
+static Ps_row point_set_row(const Options& o, const WB::Surface& S, std::size_t s, double sigma)
+{
+  // recommended settings (section "Which settings to use"): clean WJ K = 6, r = 0.1; noisy WJ K = 2, r = 0.2
+  Best b;
+  b.e = WJ;
+  b.K = sigma == 0. ? 6 : 2;
+  b.r = sigma == 0. ? 0.1 : 0.2;
+  const Dataset d = make_dataset(S, s, o, sigma, 0.);
+  const Point_set_outputs ps = run_point_set_functions_on(d, b);
+  const std::size_t N = d.points.size();
+  WB::Error_accumulator a;
+  for(std::size_t i = 0; i < N; ++i)
+  {
+    if(!d.samples[i].inlier || d.samples[i].boundary_distance <= b.r) continue;
+    if(!ps.fitted[i]) { ++a.failed; continue; }
+    const Vector n = ps.normals[i];
+    a.add_normal(WB::V3(n.x(), n.y(), n.z()), d.samples[i].truth);
+    a.add_curvature(ps.H[i], ps.KG[i], ps.k1[i], ps.k2[i], d.samples[i].truth);
+  }
+  Ps_row row;
+  row.surface = S.name();
+  row.sigma = sigma;
+  std::ostringstream st;
+  st << estimator_name[b.e] << " K=" << b.K << " r=" << b.r;
+  row.setting = st.str();
+  row.wj = summarize(a, true);
+  row.unfitted = ps.unfitted;
+  row.seconds = ps.seconds;
+  // consistency with Wavejet_fitting at the evaluation points, and CGAL on all points
+  const Neighborhoods nh = gather(d, b.r);
+  const std::vector<Estimate> ev = run_estimator(Estimator(b.e), d, nh, b.K, b.r);
+  row.max_diff = 0.;
+  for(std::size_t i = 0; i < ev.size(); ++i)
+    if(ev[i].ok)
+    {
+      const std::size_t j = d.eval[i];
+      const Vector n = ps.normals[j];
+      row.max_diff = std::max({row.max_diff, std::abs(ev[i].H - ps.H[j]), std::abs(ev[i].K - ps.KG[j]),
+                               (ev[i].n - WB::V3(n.x(), n.y(), n.z())).norm()});
+    }
+  // CGAL on all points (same degree, same radius)
+  Dataset all = d;
+  all.eval.clear();
+  for(std::size_t i = 0; i < N; ++i)
+    if(d.samples[i].inlier && d.samples[i].boundary_distance > b.r) all.eval.push_back(i);
+  const Neighborhoods nh_all = gather(all, b.r);
+  row.cgal = evaluate(run_estimator(CGAL_JET, all, nh_all, b.K, b.r), all, true);
+  return row;
+}
+
+/// Experiment 4: the point-set functions on all N points at recommended settings.
+static void run_point_set_functions(const Options& o, const Surfaces& surfaces, Experiments& ex,
+                                    const CGAL::Real_timer& total)
+{
   for(std::size_t s = 0; s < surfaces.size(); ++s)
   {
-    const WB::Surface& S = *surfaces[s];
-    for(double sigma : {0., 0.5})
-    {
-      // recommended settings (section "Which settings to use"): clean WJ K = 6, r = 0.1; noisy WJ K = 2, r = 0.2
-      Best b;
-      b.e = WJ;
-      b.K = sigma == 0. ? 6 : 2;
-      b.r = sigma == 0. ? 0.1 : 0.2;
-      const Dataset d = make_dataset(S, s, o, sigma, 0.);
-      // The range is the point indices; positions, normals and outputs live in index-keyed maps.
-      std::vector<std::size_t> idx(d.points.size());
-      for(std::size_t i = 0; i < idx.size(); ++i) idx[i] = i;
-      std::vector<Vector> true_normals, out_normals;
-      for(const WB::Sample& x : d.samples) true_normals.emplace_back(x.truth.normal.x(), x.truth.normal.y(), x.truth.normal.z());
-      out_normals = true_normals;
-      const std::size_t N = idx.size();
-      std::vector<double> H(N, 0.), KG(N, 0.), k1(N, 0.), k2(N, 0.);
-      std::vector<unsigned char> fitted_n(N, 0);
-      CGAL::Real_timer t;
-      t.start();
-      const std::size_t rob = b.e == WJ_R3 ? 3 : 0;
-      const double npc = b.e == WJ_FIX ? 1.0 : 1.1;
-      const std::size_t mino = b.e == WJ_FIX ? b.K : 2;
-      const auto frame = b.e == WJ_T ? CGAL::Wavejets::Curvature_frame::TANGENT_FRAME
-                                     : CGAL::Wavejets::Curvature_frame::INITIAL_FRAME;
-      CGAL::wavejet_estimate_curvatures<Tag>(idx, 0,
-        WP::order(b.K).robust_iterations(rob).neighbors_per_coefficient(npc).minimum_order(mino).curvature_frame(frame)
-          .mean_curvature_map(CGAL::make_property_map(H)).gaussian_curvature_map(CGAL::make_property_map(KG))
-          .maximal_principal_curvature_map(CGAL::make_property_map(k1))
-          .minimal_principal_curvature_map(CGAL::make_property_map(k2))
-          .neighbor_radius(b.r).point_map(CGAL::make_property_map(d.points))
-          .normal_map(CGAL::make_property_map(true_normals)));
-      CGAL::Wavejets::Processing_report rep = CGAL::wavejet_estimate_normals<Tag>(idx, 0,
-        WP::order(b.K).robust_iterations(rob).neighbors_per_coefficient(npc).minimum_order(mino)
-          .orient_with_input_normals(true).fitted_map(CGAL::make_property_map(fitted_n))
-          .neighbor_radius(b.r).point_map(CGAL::make_property_map(d.points))
-          .normal_map(CGAL::make_property_map(out_normals)));
-      const double seconds = t.time();
-      WB::Error_accumulator a;
-      for(std::size_t i = 0; i < N; ++i)
-      {
-        if(!d.samples[i].inlier || d.samples[i].boundary_distance <= b.r) continue;
-        if(!fitted_n[i]) { ++a.failed; continue; }
-        const Vector n = out_normals[i];
-        a.add_normal(WB::V3(n.x(), n.y(), n.z()), d.samples[i].truth);
-        a.add_curvature(H[i], KG[i], k1[i], k2[i], d.samples[i].truth);
-      }
-      Ps_row row;
-      row.surface = S.name();
-      row.sigma = sigma;
-      std::ostringstream st;
-      st << estimator_name[b.e] << " K=" << b.K << " r=" << b.r;
-      row.setting = st.str();
-      row.wj = summarize(a, true);
-      row.unfitted = rep.number_of_unfitted_points;
-      row.seconds = seconds;
-      // consistency with Wavejet_fitting at the evaluation points, and CGAL on all points
-      const Neighborhoods nh = gather(d, b.r);
-      const std::vector<Estimate> ev = run_estimator(Estimator(b.e), d, nh, b.K, b.r);
-      row.max_diff = 0.;
-      for(std::size_t i = 0; i < ev.size(); ++i)
-        if(ev[i].ok)
-        {
-          const std::size_t j = d.eval[i];
-          const Vector n = out_normals[j];
-          row.max_diff = std::max({row.max_diff, std::abs(ev[i].H - H[j]), std::abs(ev[i].K - KG[j]),
-                                   (ev[i].n - WB::V3(n.x(), n.y(), n.z())).norm()});
-        }
-      // CGAL on all points (same degree, same radius)
-      Dataset all = d;
-      all.eval.clear();
-      for(std::size_t i = 0; i < N; ++i)
-        if(d.samples[i].inlier && d.samples[i].boundary_distance > b.r) all.eval.push_back(i);
-      const Neighborhoods nh_all = gather(all, b.r);
-      row.cgal = evaluate(run_estimator(CGAL_JET, all, nh_all, b.K, b.r), all, true);
-      ps_rows.push_back(row);
-    }
-    std::cerr << S.name() << " point-set run done (total " << total.time() << " s)\n";
+    for(double sigma : {0., 0.5}) ex.ps_rows.push_back(point_set_row(o, *surfaces[s], s, sigma));
+    std::cerr << surfaces[s]->name() << " point-set run done (total " << total.time() << " s)\n";
   }
-  const double total_seconds = total.time();
+}
 
-  // ---- Data files and plot ------------------------------------------------------------------------
-  // accuracy_noise.dat: per surface block, per sigma: best H RMSE over (K, r) of WJ, WJ-R3, WJ-T, CGAL,
-  // best mean normal angle over (K, r) of WJ, WJ-R3, CGAL and PCA.
-  // The script names the data and the image relative to DIR (no absolute paths in the committed files).
-  const std::string dat = "accuracy_noise.dat";
-  {
-    std::ofstream f(o.out + "/" + dat);
-    f << "# sigma_pct  H_WJ H_WJ-R3 H_WJ-T H_CGAL  angle_WJ angle_WJ-R3 angle_CGAL angle_PCA  (best over K, r)\n";
-    for(const auto& S : surfaces)
-    {
-      f << "# " << S->name() << "\n";
-      for(double sigma : sigmas)
-      {
-        f << sigma;
-        for(int e : {WJ, WJ_R3, WJ_T, CGAL_JET})
-        {
-          const Best b = best_of(S->name(), sigma, radii, {e});
-          if(b.K == 0) f << " NaN";
-          else f << " " << b.H;
-        }
-        for(int e : {WJ, WJ_R3, CGAL_JET, PCA})
-        {
-          double best = 1e300;
-          for(double r : radii)
-            for(std::size_t K : (e == PCA ? std::vector<std::size_t>{0} : orders))
-              best = std::min(best, R.at({S->name(), sigma, 0., r, K, e}).mean_angle);
-          f << " " << best;
-        }
-        f << "\n";
-      }
-      f << "\n\n";
-    }
-  }
-  const std::string gp = "accuracy.gp";
-  const std::string png = "accuracy.png";
-  {
-    std::ofstream f(o.out + "/" + gp);
-    f << "# gnuplot script written by bench_accuracy; run from its directory: gnuplot accuracy.gp\n"
-      << "set terminal pngcairo size 1800,1000 font 'DejaVu Sans,11'\n"
-      << "set output '" << png << "'\n"
-      << "set multiplot layout 2," << surfaces.size()
-      << " title 'Wavejets vs CGAL jets: error against position noise (best over order K and radius r for each estimator)'\n"
-      << "set termoption noenhanced\nset logscale y\nset format y '%.0e'\nset grid\nset key bottom right font ',9'\n"
-      << "set xlabel 'noise sigma (% of bbox diagonal)'\n";
-    for(std::size_t s = 0; s < surfaces.size(); ++s)
-      f << "set title '" << surfaces[s]->name() << ": RMSE of H'\n"
-        << "plot '" << dat << "' index " << s << " using 1:2 w lp lw 2 pt 7 title 'WJ', '' index " << s
-        << " using 1:3 w lp lw 2 pt 5 title 'WJ-R3', '' index " << s << " using 1:4 w lp lw 2 pt 9 dt 2 title 'WJ-T', '' index "
-        << s << " using 1:5 w lp lw 2 pt 4 dt 3 title 'CGAL jet'\n";
-    for(std::size_t s = 0; s < surfaces.size(); ++s)
-      f << "set title '" << surfaces[s]->name() << ": mean normal angle (deg)'\n"
-        << "plot '" << dat << "' index " << s << " using 1:6 w lp lw 2 pt 7 title 'WJ', '' index " << s
-        << " using 1:7 w lp lw 2 pt 5 title 'WJ-R3', '' index " << s << " using 1:8 w lp lw 2 pt 4 dt 3 title 'CGAL jet', '' index "
-        << s << " using 1:9 w lp lw 2 pt 6 dt 4 title 'PCA'\n";
-    f << "unset multiplot\n";
-  }
-  bool plotted = false;
-  if(o.plot && std::system("command -v gnuplot >/dev/null 2>&1") == 0)
-    plotted = std::system(("cd '" + o.out + "' && gnuplot " + gp).c_str()) == 0;
+// ---------------------------------------------------------------------------------------------
+// Data file and plot
 
-  // ---- Report -------------------------------------------------------------------------------------
-  std::ostringstream md;
+/// accuracy_noise.dat: per surface block, per sigma: best H RMSE over (K, r) of WJ, WJ-R3, WJ-T, CGAL,
+/// best mean normal angle over (K, r) of WJ, WJ-R3, CGAL and PCA.
+static void write_noise_data(const std::string& path, const Surfaces& surfaces, const Experiments& ex)
+{
+  std::ofstream f(path);
+  f << "# sigma_pct  H_WJ H_WJ-R3 H_WJ-T H_CGAL  angle_WJ angle_WJ-R3 angle_CGAL angle_PCA  (best over K, r)\n";
+  for(const auto& S : surfaces)
+  {
+    f << "# " << S->name() << "\n";
+    for(double sigma : ex.sigmas)
+    {
+      f << sigma;
+      for(int e : {WJ, WJ_R3, WJ_T, CGAL_JET})
+      {
+        const Best b = ex.best_of(S->name(), sigma, ex.radii, {e});
+        if(b.K == 0) f << " NaN";
+        else f << " " << b.H;
+      }
+      for(int e : {WJ, WJ_R3, CGAL_JET, PCA}) f << " " << ex.best_angle(S->name(), sigma, e);
+      f << "\n";
+    }
+    f << "\n\n";
+  }
+}
+
+/// The gnuplot script; it names the data and the image relative to its own directory.
+static void write_plot_script(const std::string& path, const std::string& dat, const std::string& png,
+                              const Surfaces& surfaces)
+{
+  std::ofstream f(path);
+  f << "# gnuplot script written by bench_accuracy; run from its directory: gnuplot accuracy.gp\n"
+    << "set terminal pngcairo size 1800,1000 font 'DejaVu Sans,11'\n"
+    << "set output '" << png << "'\n"
+    << "set multiplot layout 2," << surfaces.size()
+    << " title 'Wavejets vs CGAL jets: error against position noise (best over order K and radius r for each estimator)'\n"
+    << "set termoption noenhanced\nset logscale y\nset format y '%.0e'\nset grid\nset key bottom right font ',9'\n"
+    << "set xlabel 'noise sigma (% of bbox diagonal)'\n";
+  for(std::size_t s = 0; s < surfaces.size(); ++s)
+    f << "set title '" << surfaces[s]->name() << ": RMSE of H'\n"
+      << "plot '" << dat << "' index " << s << " using 1:2 w lp lw 2 pt 7 title 'WJ', '' index " << s
+      << " using 1:3 w lp lw 2 pt 5 title 'WJ-R3', '' index " << s << " using 1:4 w lp lw 2 pt 9 dt 2 title 'WJ-T', '' index "
+      << s << " using 1:5 w lp lw 2 pt 4 dt 3 title 'CGAL jet'\n";
+  for(std::size_t s = 0; s < surfaces.size(); ++s)
+    f << "set title '" << surfaces[s]->name() << ": mean normal angle (deg)'\n"
+      << "plot '" << dat << "' index " << s << " using 1:6 w lp lw 2 pt 7 title 'WJ', '' index " << s
+      << " using 1:7 w lp lw 2 pt 5 title 'WJ-R3', '' index " << s << " using 1:8 w lp lw 2 pt 4 dt 3 title 'CGAL jet', '' index "
+      << s << " using 1:9 w lp lw 2 pt 6 dt 4 title 'PCA'\n";
+  f << "unset multiplot\n";
+}
+
+// ---------------------------------------------------------------------------------------------
+// Report (accuracy.md)
+
+/// Title, command, machine, setup and the estimators.
+static void write_introduction(std::ostream& md, const Options& o, const Surfaces& surfaces, const Experiments& ex,
+                               double total_seconds)
+{
   std::time_t now = std::time(nullptr);
   char date[64];
   std::strftime(date, sizeof date, "%Y-%m-%d", std::gmtime(&now));
@@ -1192,7 +1315,7 @@ int main(int argc, char** argv)
      << "Generated by `benchmark/Wavejets/bench_accuracy.cpp` on " << date << ". Command (from the repository root):\n\n"
      << "    cmake -S . -B build/bench -DCMAKE_BUILD_TYPE=Release && cmake --build build/bench --target bench_accuracy -j1\n"
      << "    build/bench/benchmark/Wavejets/" << o.command << "\n\n"
-     << "Machine: " << machine_description() << ". Total run time " << fmt(total_seconds, 3) << " s.\n\n";
+     << "Machine: " << WB::machine_description() << ". Total run time " << fmt(total_seconds, 3) << " s.\n\n";
   md << "## Setup\n\n"
      << "- Surfaces (`test/Wavejets/support/analytic_surfaces.h`), all in [-1, 1]^3 with half-extent 1, " << o.points
      << " points each, fixed seeds:\n"
@@ -1217,7 +1340,7 @@ int main(int argc, char** argv)
   for(const auto& S : surfaces)
   {
     md << " " << S->name() << " ";
-    for(double r : radii) md << (r == radii[0] ? "" : "/") << fmt(mean_neighbors[{S->name(), r}], 3);
+    for(double r : ex.radii) md << (r == ex.radii[0] ? "" : "/") << fmt(ex.mean_neighbors.at({S->name(), r}), 3);
   }
   md << " (r = 0.05/0.1/0.2).\n"
      << "- Errors over " << o.eval << " evaluation points per surface (random inliers at least 0.2 from a border;"
@@ -1240,9 +1363,31 @@ int main(int argc, char** argv)
      << "The Wavejet numbers come from `Wavejet_fitting`, the fitting core that `wavejet_estimate_curvatures` and"
         " `wavejet_estimate_normals` run per point; the last section runs those functions on all points and checks that they"
         " give the same values.\n\n";
+}
 
-  // Targets
-  md << "## Targets\n\n";
+/// "Targets", clean data: WJ (default) vs CGAL at every (surface, r, K).
+static void write_clean_target(std::ostream& md, const Surfaces& surfaces, const Experiments& ex)
+{
+  std::size_t clean_total = 0, clean_h_ok = 0, clean_n_ok = 0;
+  std::ostringstream clean_violations;
+  double worst_rel = 0.;
+  for(const auto& S : surfaces)
+    for(double r : ex.radii)
+      for(std::size_t K : ex.orders)
+      {
+        const Result& w = ex.get(S->name(), 0., r, K, WJ);
+        const Result& c = ex.get(S->name(), 0., r, K, CGAL_JET);
+        ++clean_total;
+        const double tol = 1e-9 * (1. + c.H);
+        if(w.H <= c.H + tol) ++clean_h_ok;
+        else
+        {
+          clean_violations << "  - " << S->name() << " r=" << r << " K=" << K << ": H RMSE WJ " << fmt(w.H, 6)
+                           << " vs CGAL " << fmt(c.H, 6) << "\n";
+        }
+        worst_rel = std::max(worst_rel, std::abs(w.H - c.H) / std::max(c.H, 1e-300));
+        if(w.mean_angle <= c.mean_angle * (1. + 1e-9) + 1e-12) ++clean_n_ok;
+      }
   md << "**Clean data, Wavejet error <= CGAL jet error at equal degree and neighborhood, every surface:** RMSE of H: "
      << clean_h_ok << " / " << clean_total << " (surface, r, K) configurations"
      << (clean_h_ok == clean_total ? " — **met**" : " — **not met** everywhere") << "; largest relative difference of the"
@@ -1251,8 +1396,14 @@ int main(int argc, char** argv)
         " expected outcome, not an improvement). Mean normal angle: WJ <= CGAL in " << clean_n_ok << " / " << clean_total
      << " configurations (the WJ normal is that of the order-K Wavejet fitted in the tangent plane found by order-2 fits, CGAL's that of the jet fitted in the PCA frame).\n";
   if(clean_h_ok != clean_total) md << "\nConfigurations where WJ's H RMSE is above CGAL's:\n\n" << clean_violations.str();
+}
+
+/// "Targets", noisy data (sigma = 0.5%): best WJ setting vs best CGAL setting, per radius and overall.
+static void write_noisy_target(std::ostream& md, const Surfaces& surfaces, const Experiments& ex)
+{
+  const std::vector<int> wj_set = {WJ, WJ_R3, WJ_T, WJ_FIX};
   md << "\n**Noisy data (sigma = 0.5%), best Wavejet setting <= half of CGAL jets' H RMSE:**\n\n"
-     << "Best over order K in {" << orders.front() << ".." << orders.back() << "} and estimator variant, at each radius"
+     << "Best over order K in {" << ex.orders.front() << ".." << ex.orders.back() << "} and estimator variant, at each radius"
         " (CGAL at its own best degree at the same radius), and overall (best over radii too):\n\n"
      << "| surface | r | best Wavejet (variant, K) | H RMSE | best CGAL (K) | H RMSE | ratio | <= 0.5? |\n"
      << "| --- | --- | --- | --- | --- | --- | --- | --- |\n";
@@ -1260,11 +1411,11 @@ int main(int argc, char** argv)
   for(const auto& S : surfaces)
   {
     std::vector<std::vector<double> > groups;
-    for(double r : radii) groups.push_back({r});
-    groups.push_back(radii);
+    for(double r : ex.radii) groups.push_back({r});
+    groups.push_back(ex.radii);
     for(const auto& g : groups)
     {
-      const Best w = best_of(S->name(), 0.5, g, wj_set), c = best_of(S->name(), 0.5, g, {CGAL_JET});
+      const Best w = ex.best_of(S->name(), 0.5, g, wj_set), c = ex.best_of(S->name(), 0.5, g, {CGAL_JET});
       const bool all = g.size() > 1;
       if(w.K == 0 || c.K == 0)
       {
@@ -1280,55 +1431,56 @@ int main(int argc, char** argv)
     }
   }
   md << "\nOverall (best over radii for both): met on " << half_met << " / " << half_total << " surfaces.\n\n";
-  if(!pipe.target.empty()) md << pipe.target << "\n\n";
+}
 
-  md << "Time spent per estimator in the position-noise sweep (all surfaces, noise levels, radii and orders; "
-     << o.eval << " points each; both threads): WJ (also gives WJ-T) " << fmt(seconds[WJ]) << " s, WJ-R3 "
-     << fmt(seconds[WJ_R3]) << " s, CGAL " << fmt(seconds[CGAL_JET]) << " s.\n\n";
-  // Full tables
-  auto table_header = [&](std::ostream& os) {
-    os << "| surface | r | K | est. | H | K_G | k1 | k2 | angle mean | angle p95 | not fitted | reduced |\n"
-       << "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
-  };
-  auto row = [&](std::ostream& os, const std::string& S, double r, std::size_t K, int e, const Result& x) {
-    os << "| " << S << " | " << r << " | " << (e == PCA ? std::string("-") : std::to_string(K)) << " | " << estimator_name[e]
-       << " | " << (x.has_curvature ? fmt(x.H) : "-") << " | " << (x.has_curvature ? fmt(x.K) : "-") << " | "
-       << (x.has_curvature ? fmt(x.k1) : "-") << " | " << (x.has_curvature ? fmt(x.k2) : "-") << " | "
-       << fmt(x.mean_angle) << " | " << fmt(x.p95_angle) << " | " << x.failed << " | "
-       << (e == WJ || e == WJ_R3 || e == WJ_T ? std::to_string(x.reduced) : std::string("-")) << " |\n";
-  };
+static void write_full_table_header(std::ostream& os)
+{
+  os << "| surface | r | K | est. | H | K_G | k1 | k2 | angle mean | angle p95 | not fitted | reduced |\n"
+     << "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+}
+
+static void write_full_table_row(std::ostream& os, const std::string& S, double r, std::size_t K, int e, const Result& x)
+{
+  os << "| " << S << " | " << r << " | " << (e == PCA ? std::string("-") : std::to_string(K)) << " | " << estimator_name[e]
+     << " | " << (x.has_curvature ? fmt(x.H) : "-") << " | " << (x.has_curvature ? fmt(x.K) : "-") << " | "
+     << (x.has_curvature ? fmt(x.k1) : "-") << " | " << (x.has_curvature ? fmt(x.k2) : "-") << " | "
+     << fmt(x.mean_angle) << " | " << fmt(x.p95_angle) << " | " << x.failed << " | "
+     << (e == WJ || e == WJ_R3 || e == WJ_T ? std::to_string(x.reduced) : std::string("-")) << " |\n";
+}
+
+/// "Summary": per surface and noise level, the best setting of each estimator.
+static void write_summary(std::ostream& md, const Surfaces& surfaces, const Experiments& ex)
+{
   md << "## Summary: best setting per estimator\n\n"
      << "Per surface and noise level, the smallest H RMSE over (K, r) of each estimator, and the smallest mean normal angle"
         " over (K, r). Plot: `accuracy.png` (data `accuracy_noise.dat`, script `accuracy.gp`).\n\n"
      << "| surface | sigma % | WJ: H (K, r) | WJ-R3 | WJ-T | CGAL | normal WJ (deg) | WJ-R3 | CGAL | PCA |\n"
      << "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
   for(const auto& S : surfaces)
-    for(double sigma : sigmas)
+    for(double sigma : ex.sigmas)
     {
       md << "| " << S->name() << " | " << sigma;
       for(int e : {WJ, WJ_R3, WJ_T, CGAL_JET})
       {
-        const Best b = best_of(S->name(), sigma, radii, {e});
+        const Best b = ex.best_of(S->name(), sigma, ex.radii, {e});
         if(b.K == 0) md << " | -";
         else md << " | " << fmt(b.H) << " (" << b.K << ", " << b.r << ")";
       }
       for(int e : {WJ, WJ_R3, CGAL_JET, PCA})
       {
-        double best = 1e300, br = 0;
+        double br = 0;
         std::size_t bk = 0;
-        for(double r : radii)
-          for(std::size_t K : (e == PCA ? std::vector<std::size_t>{0} : orders))
-          {
-            const Result& x = R.at({S->name(), sigma, 0., r, K, e});
-            if(x.mean_angle < best) { best = x.mean_angle; br = r; bk = K; }
-          }
+        const double best = ex.best_angle(S->name(), sigma, e, &br, &bk);
         md << " | " << fmt(best) << " (" << (e == PCA ? std::string("-") : std::to_string(bk)) << ", " << br << ")";
       }
       md << " |\n";
     }
   md << "\n";
+}
 
-  // Point-set functions
+/// "The point-set functions on all points" (experiment 4).
+static void write_point_set_table(std::ostream& md, const Options& o, const Experiments& ex)
+{
   md << "## The point-set functions on all points (recommended settings)\n\n"
      << "`wavejet_estimate_curvatures` (true normals as `normal_map`, orienting only) and `wavejet_estimate_normals` on all "
      << o.points << " points with `neighbor_radius(r)` at the recommended settings (clean: default WJ, K = 6, r = 0.1; sigma = 0.5%:"
@@ -1338,38 +1490,39 @@ int main(int argc, char** argv)
         " at the evaluation points (identical neighborhoods: expected 0).\n\n"
      << "| surface | sigma % | setting | WJ H | CGAL H | WJ K_G | CGAL K_G | WJ angle mean / p95 | CGAL angle mean / p95 | not fitted | max diff | WJ time (s) |\n"
      << "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
-  for(const Ps_row& p : ps_rows)
+  for(const Ps_row& p : ex.ps_rows)
     md << "| " << p.surface << " | " << p.sigma << " | " << p.setting << " | " << fmt(p.wj.H) << " | " << fmt(p.cgal.H) << " | "
        << fmt(p.wj.K) << " | " << fmt(p.cgal.K) << " | " << fmt(p.wj.mean_angle) << " / " << fmt(p.wj.p95_angle) << " | "
        << fmt(p.cgal.mean_angle) << " / " << fmt(p.cgal.p95_angle) << " | " << p.unfitted << " | " << fmt(p.max_diff, 2)
        << " | " << fmt(p.seconds) << " |\n";
   md << "\n";
+}
 
-  if(!pipe.block.empty()) md << pipe.block << "\n\n";
-
-  // Which settings
-  md << "## Which settings to use\n\n@@SETTINGS@@\n\n";
-
-  // Outliers
+/// "Outliers" (experiment 2).
+static void write_outliers(std::ostream& md, const Surfaces& surfaces, const Experiments& ex)
+{
   md << "## Outliers\n\nsigma = 0 and 0.5%, outlier fraction 0/5/10%, r = 0.1 and 0.2, K = 2 and 4; H RMSE and mean normal"
         " angle (deg) at the inliers.\n\n"
      << "| surface | sigma % | outliers | r | K | WJ H | WJ-R3 H | CGAL H | WJ angle | WJ-R3 angle | CGAL angle | PCA angle |\n"
      << "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
   for(const auto& S : surfaces)
-    for(double sigma : out_sigmas)
-      for(double of : outlier_fractions)
-        for(double r : out_radii)
-          for(std::size_t K : out_orders)
+    for(double sigma : ex.out_sigmas)
+      for(double of : ex.outlier_fractions)
+        for(double r : ex.out_radii)
+          for(std::size_t K : ex.out_orders)
           {
-            auto g = [&](int e, std::size_t k) -> const Result& { return R.at({S->name(), sigma, of, r, k, e}); };
+            auto g = [&](int e, std::size_t k) -> const Result& { return ex.R.at({S->name(), sigma, of, r, k, e}); };
             md << "| " << S->name() << " | " << sigma << " | " << of * 100 << "% | " << r << " | " << K << " | "
                << fmt(g(WJ, K).H) << " | " << fmt(g(WJ_R3, K).H) << " | " << fmt(g(CGAL_JET, K).H) << " | "
                << fmt(g(WJ, K).mean_angle) << " | " << fmt(g(WJ_R3, K).mean_angle) << " | " << fmt(g(CGAL_JET, K).mean_angle)
                << " | " << fmt(g(PCA, 0).mean_angle) << " |\n";
           }
   md << "\n";
+}
 
-  // Seed normals
+/// "Noisy seed normals" (experiment 3).
+static void write_seed_normals(std::ostream& md, const Experiments& ex)
+{
   md << "## Noisy seed normals\n\nsigma = 0, r = 0.1, K = 4. The input normals are the true normals tilted by a random angle"
         " (tangent components N(0, s^2), s in degrees below; mean tilt = s sqrt(pi/2)). 'orient': the normal only orients the"
         " PCA frame (default); 'seed': first fit in the plane orthogonal to the noisy normal (`seed_with_input_normals(true)`),"
@@ -1377,46 +1530,107 @@ int main(int argc, char** argv)
         " reference.\n\n"
      << "| surface | s (deg) | orient: H / angle | seed: H / angle | seed+T: H / angle | CGAL: H / angle |\n"
      << "| --- | --- | --- | --- | --- | --- |\n";
-  for(const Seed_row& x : seed_rows)
+  for(const Seed_row& x : ex.seed_rows)
     md << "| " << x.surface << " | " << x.deg << " | " << fmt(x.orient.H) << " / " << fmt(x.orient.mean_angle) << " | "
        << fmt(x.seed.H) << " / " << fmt(x.seed.mean_angle) << " | " << fmt(x.seed_t.H) << " / " << fmt(x.seed_t.mean_angle)
        << " | " << fmt(x.cgal.H) << " / " << fmt(x.cgal.mean_angle) << " |\n";
   md << "\n";
+}
 
-  // Full table
+/// "Full tables": every (surface, r, K, estimator) of experiment 1.
+static void write_full_tables(std::ostream& md, const Surfaces& surfaces, const Experiments& ex)
+{
   md << "## Full tables (position noise)\n\nRMSE of H, K_G, k1, k2; normal angle in degrees; 'not fitted': evaluation points"
         " without an estimate; 'reduced': evaluation points whose neighborhood is below 1.1 (K+1)(K+2)/2 points (adaptive"
         " order lowers K there).\n\n";
-  for(double sigma : sigmas)
+  for(double sigma : ex.sigmas)
   {
     md << "### sigma = " << sigma << "%\n\n";
-    table_header(md);
+    write_full_table_header(md);
     for(const auto& S : surfaces)
-      for(double r : radii)
+      for(double r : ex.radii)
       {
-        row(md, S->name(), r, 0, PCA, R.at({S->name(), sigma, 0., r, 0, PCA}));
-        for(std::size_t K : orders)
+        write_full_table_row(md, S->name(), r, 0, PCA, ex.R.at({S->name(), sigma, 0., r, 0, PCA}));
+        for(std::size_t K : ex.orders)
           for(int e : {WJ, WJ_R3, WJ_T, WJ_FIX, CGAL_JET})
-            row(md, S->name(), r, K, e, R.at({S->name(), sigma, 0., r, K, e}));
+            write_full_table_row(md, S->name(), r, K, e, ex.R.at({S->name(), sigma, 0., r, K, e}));
       }
     md << "\n";
   }
+}
 
-  // Keep a hand-written settings section across runs: read it back from an existing report.
-  std::string settings = "(to be written from the tables above)";
+/// The whole report; "Which settings to use" is the hand-written block of `old_report` (kept across runs).
+static std::string accuracy_report(const Options& o, const Surfaces& surfaces, const Experiments& ex,
+                                   const Pipe_output& pipe, double total_seconds, const std::string& old_report)
+{
+  std::ostringstream md;
+  write_introduction(md, o, surfaces, ex, total_seconds);
+  md << "## Targets\n\n";
+  write_clean_target(md, surfaces, ex);
+  write_noisy_target(md, surfaces, ex);
+  if(!pipe.target.empty()) md << pipe.target << "\n\n";
+  md << "Time spent per estimator in the position-noise sweep (all surfaces, noise levels, radii and orders; "
+     << o.eval << " points each; both threads): WJ (also gives WJ-T) " << fmt(ex.seconds[WJ]) << " s, WJ-R3 "
+     << fmt(ex.seconds[WJ_R3]) << " s, CGAL " << fmt(ex.seconds[CGAL_JET]) << " s.\n\n";
+  write_summary(md, surfaces, ex);
+  write_point_set_table(md, o, ex);
+  if(!pipe.block.empty()) md << pipe.block << "\n\n";
+  std::string settings = marked_block(old_report, "settings");
+  if(settings.empty())
+    settings = "<!-- settings-begin -->\n(to be written from the tables above)\n<!-- settings-end -->";
+  md << "## Which settings to use\n\n" << settings << "\n\n";
+  write_outliers(md, surfaces, ex);
+  write_seed_normals(md, ex);
+  write_full_tables(md, surfaces, ex);
+  return md.str();
+}
+
+// ---------------------------------------------------------------------------------------------
+
+int main(int argc, char** argv)
+{
+  Options o;
+  int exit_code = 0;
+  if(!parse_command_line(argc, argv, o, exit_code)) return exit_code;
+
+  CGAL::Real_timer total;
+  total.start();
+  const Surfaces surfaces = WB::all_surfaces();
+  // Blocks kept from an existing report when they are not regenerated.
+  const std::string old_report = read_text_file(o.out + "/accuracy.md");
+  Pipe_output pipe;
+  if(o.pipeline)
   {
-    std::ifstream old(o.out + "/accuracy.md");
-    std::stringstream buf;
-    buf << old.rdbuf();
-    const std::string s = buf.str();
-    const std::string begin = "<!-- settings-begin -->", end = "<!-- settings-end -->";
-    const std::size_t b = s.find(begin), e = s.find(end);
-    if(b != std::string::npos && e != std::string::npos && e > b) settings = s.substr(b, e + end.size() - b);
-    else settings = begin + "\n" + settings + "\n" + end;
+    pipe = Noisy_pipeline(o, surfaces).run();
+    std::ofstream(o.out + "/accuracy_pipeline.dat") << pipe.dat;
   }
-  std::string text = md.str();
-  text.replace(text.find("@@SETTINGS@@"), 12, settings);
-  std::ofstream(o.out + "/accuracy.md") << text;
+  if(o.pipeline_only)
+  {
+    merge_pipeline_section(o, old_report, pipe);
+    return 0;
+  }
+  if(!o.pipeline)
+  {
+    pipe.block = marked_block(old_report, "noisy-pipeline");
+    pipe.target = marked_block(old_report, "pipeline-target");
+  }
+
+  Experiments ex(o.quick);
+  run_position_noise(o, surfaces, ex, total);
+  run_outliers(o, surfaces, ex, total);
+  run_seed_normals(o, surfaces, ex, total);
+  run_point_set_functions(o, surfaces, ex, total);
+  const double total_seconds = total.time();
+
+  // The script names the data and the image relative to DIR (no absolute paths in the committed files).
+  const std::string dat = "accuracy_noise.dat", gp = "accuracy.gp", png = "accuracy.png";
+  write_noise_data(o.out + "/" + dat, surfaces, ex);
+  write_plot_script(o.out + "/" + gp, dat, png, surfaces);
+  bool plotted = false;
+  if(o.plot && std::system("command -v gnuplot >/dev/null 2>&1") == 0)
+    plotted = std::system(("cd '" + o.out + "' && gnuplot " + gp).c_str()) == 0;
+
+  std::ofstream(o.out + "/accuracy.md") << accuracy_report(o, surfaces, ex, pipe, total_seconds, old_report);
   std::cout << "wrote " << o.out << "/accuracy.md" << (plotted ? ", " + o.out + "/" + png : std::string(", no plot (gnuplot not found or failed)"))
             << " in " << total_seconds << " s\n";
   return 0;

@@ -52,9 +52,7 @@
 #include <CGAL/wavejet_enhance_positions.h>
 #include <CGAL/Wavejets/internal/neighbor_query.h>
 
-#ifdef CGAL_LINKED_WITH_TBB
-#include <tbb/info.h>
-#endif
+#include "bench_common.h"
 
 #include <Eigen/Dense>
 
@@ -72,7 +70,6 @@
 #include <random>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <utility>
 #include <vector>
 
@@ -98,23 +95,6 @@ static std::string fmt(double v, int prec = 3)
   std::ostringstream s;
   if(v != 0. && (std::abs(v) < 1e-3 || std::abs(v) >= 1e4)) s << std::scientific << std::setprecision(prec - 1) << v;
   else s << std::fixed << std::setprecision(prec - 1 - (std::abs(v) >= 10. ? 1 : 0)) << v;
-  return s.str();
-}
-
-static std::string machine_description()
-{
-  std::string cpu = "unknown CPU";
-  std::ifstream f("/proc/cpuinfo");
-  std::string line;
-  while(std::getline(f, line))
-    if(line.rfind("model name", 0) == 0) { cpu = line.substr(line.find(':') + 2); break; }
-  std::ostringstream s;
-  s << cpu << ", " << std::thread::hardware_concurrency() << " hardware threads";
-#ifdef CGAL_LINKED_WITH_TBB
-  s << ", TBB with " << tbb::info::default_concurrency() << " threads (Parallel_if_available_tag)";
-#else
-  s << ", no TBB (sequential)";
-#endif
   return s.str();
 }
 
@@ -376,96 +356,124 @@ static std::vector<Pipeline_row> figure12_pipeline(double lambda, double noise_s
 }
 
 // ---------------------------------------------------------------------------------------------
-// Main
+// Command line
 // ---------------------------------------------------------------------------------------------
 
-int main(int argc, char** argv)
+struct Options
 {
   std::string out_dir = std::string(__FILE__).substr(0, std::string(__FILE__).find_last_of('/'));
   bool quick = false, plot = true, out_given = false;
+  std::string command;
+  bool write() const { return !quick || out_given; } // --quick writes nothing unless --out
+};
+
+/// Reads the options; false on a usage error.
+static bool parse_command_line(int argc, char** argv, Options& o)
+{
   std::ostringstream cmd;
   cmd << "bench_filters";
   for(int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
-    if(a == "--quick") { quick = true; cmd << " " << a; }
-    else if(a == "--no-plot") { plot = false; cmd << " " << a; }
-    else if(a == "--out" && i + 1 < argc) { out_dir = argv[++i]; out_given = true; cmd << " --out " << out_dir; }
+    if(a == "--quick") { o.quick = true; cmd << " " << a; }
+    else if(a == "--no-plot") { o.plot = false; cmd << " " << a; }
+    else if(a == "--out" && i + 1 < argc) { o.out_dir = argv[++i]; o.out_given = true; cmd << " --out " << o.out_dir; }
     else
     {
       std::cerr << "usage: bench_filters [--quick] [--out DIR] [--no-plot]\n";
-      return 2;
+      return false;
     }
   }
-  const bool write = !quick || out_given;
-  CGAL::Real_timer total;
-  total.start();
+  o.command = cmd.str();
+  return true;
+}
 
-  const std::vector<double> lambdas = quick ? std::vector<double>{2., 4., 10.}
-                                            : std::vector<double>{1., 1.5, 2., 3., 4., 5., 6., 8., 10., 12., 15., 20.};
-  const std::vector<std::size_t> orders = quick ? std::vector<std::size_t>{2, 4} : std::vector<std::size_t>{2, 4, 6, 8};
-  const double h = Rf / 6.;
-  const double sigma = noise_ratio * A;
+// ---------------------------------------------------------------------------------------------
+// Measures
+// ---------------------------------------------------------------------------------------------
 
-  // results[K][lambda index][gain index]
+/// The transfer tables: results[K][lambda index][gain index].
+struct Transfer
+{
+  std::vector<double> lambdas;
+  std::vector<std::size_t> orders;
   std::map<std::size_t, std::vector<std::vector<Gain_pair> > > pos, nrm;
   std::map<std::size_t, std::vector<double> > kept;
   std::map<std::size_t, std::vector<std::vector<Matched> > > husm, jusm;
   std::map<std::size_t, std::vector<std::vector<Gain_pair> > > jusm_same; // J-USM at g = gain
   double linearity = 0.;                                                  // max |direct - p1 + 2 (p2 - p1)|
+};
 
-  for(std::size_t K : orders)
+/// The Wavejet filters and the baselines at order K on the sample of wavelength lambdas[l].
+static void measure_wavelength(Transfer& t, std::size_t K, std::size_t l, const CGAL::Real_timer& total)
+{
+  const double h = Rf / 6.;
+  const double sigma = noise_ratio * A;
+  const Sample s = make_sample(t.lambdas[l] * Rf, h, sigma, 1000 + l);
+  const std::vector<Point> p0 = positions(s.points);
+  const Pattern in = height_pattern(s, p0);
+  // Wavejet positions: gains 1 and 2, the others by linearity.
+  const std::vector<Point> p1 = wavejet_positions(s, K, 1., false), p2 = wavejet_positions(s, K, 2., false);
+  std::vector<Vector> step(p0.size());
+  for(std::size_t i = 0; i < p0.size(); ++i) step[i] = p2[i] - p1[i];
+  if(l == 0)
   {
-    pos[K].resize(lambdas.size());
-    nrm[K].resize(lambdas.size());
-    kept[K].resize(lambdas.size());
-    husm[K].resize(lambdas.size());
-    jusm[K].resize(lambdas.size());
-    jusm_same[K].resize(lambdas.size());
-    for(std::size_t l = 0; l < lambdas.size(); ++l)
-    {
-      const Sample s = make_sample(lambdas[l] * Rf, h, sigma, 1000 + l);
-      const std::vector<Point> p0 = positions(s.points);
-      const Pattern in = height_pattern(s, p0);
-      // Wavejet positions: gains 1 and 2, the others by linearity.
-      const std::vector<Point> p1 = wavejet_positions(s, K, 1., false), p2 = wavejet_positions(s, K, 2., false);
-      std::vector<Vector> step(p0.size());
-      for(std::size_t i = 0; i < p0.size(); ++i) step[i] = p2[i] - p1[i];
-      if(l == 0)
-      {
-        const std::vector<Point> p3 = wavejet_positions(s, K, 3., false), lin = scaled_motion(p1, step, 2.);
-        for(std::size_t i = 0; i < p0.size(); ++i)
-          linearity = (std::max)(linearity, std::sqrt(CGAL::squared_distance(p3[i], lin[i])));
-      }
-      // Baselines' motions.
-      const std::vector<Vector> hm = mean_curvature_motion(s, K), jd = jet_detail(s, K);
-      const Pattern n1 = tilt_pattern(s, wavejet_normals(s, K, 1.));
-      kept[K][l] = n1.amplitude / (A * s.w());
-      for(double g : gains)
-      {
-        const Pattern out = height_pattern(s, scaled_motion(p1, step, g - 1.));
-        const Gain_pair wj{out.amplitude / in.amplitude, out.rms / in.rms};
-        pos[K][l].push_back(wj);
-        const Pattern nt = tilt_pattern(s, wavejet_normals(s, K, g));
-        nrm[K][l].push_back({nt.amplitude / n1.amplitude, nt.rms / n1.rms});
-        husm[K][l].push_back(match_detail(s, hm, wj.detail, in));
-        jusm[K][l].push_back(match_detail(s, jd, wj.detail, in));
-        const Pattern js = height_pattern(s, scaled_motion(p0, jd, g - 1.));
-        jusm_same[K][l].push_back({js.amplitude / in.amplitude, js.rms / in.rms});
-      }
-      std::cerr << "K " << K << " lambda/Rf " << lambdas[l] << ": " << p0.size() << " points, gain 2: detail x"
-                << fmt(pos[K][l][2].detail) << " noise x" << fmt(pos[K][l][2].noise) << " (" << fmt(total.time(), 3)
-                << " s)\n";
-    }
+    const std::vector<Point> p3 = wavejet_positions(s, K, 3., false), lin = scaled_motion(p1, step, 2.);
+    for(std::size_t i = 0; i < p0.size(); ++i)
+      t.linearity = (std::max)(t.linearity, std::sqrt(CGAL::squared_distance(p3[i], lin[i])));
   }
+  // Baselines' motions.
+  const std::vector<Vector> hm = mean_curvature_motion(s, K), jd = jet_detail(s, K);
+  const Pattern n1 = tilt_pattern(s, wavejet_normals(s, K, 1.));
+  t.kept[K][l] = n1.amplitude / (A * s.w());
+  for(double g : gains)
+  {
+    const Pattern out = height_pattern(s, scaled_motion(p1, step, g - 1.));
+    const Gain_pair wj{out.amplitude / in.amplitude, out.rms / in.rms};
+    t.pos[K][l].push_back(wj);
+    const Pattern nt = tilt_pattern(s, wavejet_normals(s, K, g));
+    t.nrm[K][l].push_back({nt.amplitude / n1.amplitude, nt.rms / n1.rms});
+    t.husm[K][l].push_back(match_detail(s, hm, wj.detail, in));
+    t.jusm[K][l].push_back(match_detail(s, jd, wj.detail, in));
+    const Pattern js = height_pattern(s, scaled_motion(p0, jd, g - 1.));
+    t.jusm_same[K][l].push_back({js.amplitude / in.amplitude, js.rms / in.rms});
+  }
+  std::cerr << "K " << K << " lambda/Rf " << t.lambdas[l] << ": " << p0.size() << " points, gain 2: detail x"
+            << fmt(t.pos[K][l][2].detail) << " noise x" << fmt(t.pos[K][l][2].noise) << " (" << fmt(total.time(), 3)
+            << " s)\n";
+}
 
-  // ---- Headline check: lambda = 4 Rf, K = 4, gain 2, direct run with the default clamp --------------
-  // The first row (about 113 points per neighborhood, evaluation radius Rf: the benchmark's sampling and
-  // the defaults) is the check; the others show how it moves with the density and the evaluation radius.
-  // noise_alone: RMS over the interior of the height difference between the outputs of the noisy
-  // and the noise-free sample (same jittered grid) / sigma: the propagated noise without the filter's
-  // own deviation from a sinusoid, which the residual also counts.
-  struct Check { double neighbors, s; Gain_pair wj, jet; double noise_alone; bool pass; };
+static Transfer measure_transfer(bool quick, const CGAL::Real_timer& total)
+{
+  Transfer t;
+  t.lambdas = quick ? std::vector<double>{2., 4., 10.}
+                    : std::vector<double>{1., 1.5, 2., 3., 4., 5., 6., 8., 10., 12., 15., 20.};
+  t.orders = quick ? std::vector<std::size_t>{2, 4} : std::vector<std::size_t>{2, 4, 6, 8};
+  for(std::size_t K : t.orders)
+  {
+    t.pos[K].resize(t.lambdas.size());
+    t.nrm[K].resize(t.lambdas.size());
+    t.kept[K].resize(t.lambdas.size());
+    t.husm[K].resize(t.lambdas.size());
+    t.jusm[K].resize(t.lambdas.size());
+    t.jusm_same[K].resize(t.lambdas.size());
+    for(std::size_t l = 0; l < t.lambdas.size(); ++l)
+      measure_wavelength(t, K, l, total);
+  }
+  return t;
+}
+
+// The headline check: lambda = 4 Rf, K = 4, gain 2, direct run with the default clamp.
+// The first row (about 113 points per neighborhood, evaluation radius Rf: the benchmark's sampling and
+// the defaults) is the check; the others show how it moves with the density and the evaluation radius.
+// noise_alone: RMS over the interior of the height difference between the outputs of the noisy
+// and the noise-free sample (same jittered grid) / sigma: the propagated noise without the filter's
+// own deviation from a sinusoid, which the residual also counts.
+struct Check { double neighbors, s; Gain_pair wj, jet; double noise_alone; bool pass; };
+
+static std::vector<Check> headline_checks()
+{
+  const double sigma = noise_ratio * A;
   std::vector<Check> checks;
   for(double hh : {Rf / 6., Rf / 3.5, Rf / 5., Rf / 7.})
     for(double ev : {1., 0.8, 0.6})
@@ -487,17 +495,25 @@ int main(int argc, char** argv)
       c.pass = c.wj.detail > 1.5 && c.wj.noise <= 1.25;
       checks.push_back(c);
     }
-  const bool all_pass = checks[0].pass;
+  return checks;
+}
+
+static void print_checks(const std::vector<Check>& checks, const Transfer& t)
+{
   for(const Check& c : checks)
     std::cout << (c.pass ? "[PASS] " : "[FAIL] ") << "plane, lambda 4 Rf, noise A/10, K 4, gain 2, ~" << fmt(c.neighbors, 2)
               << " neighbors, evaluation radius " << fmt(c.s, 2) << " Rf: Wavejet detail x" << fmt(c.wj.detail) << ", noise x"
               << fmt(c.wj.noise) << " (noise alone x" << fmt(c.noise_alone) << ") (target: detail > 1.5, noise <= 1.25); jet_smooth unsharp masking at gain 2: detail x"
               << fmt(c.jet.detail) << ", noise x" << fmt(c.jet.noise) << (&c == &checks[0] ? "  <- the check" : "") << "\n";
-  std::cout << "linearity in the gain (gain 3 direct vs by linearity, lambda " << lambdas[0] << " Rf): max "
-            << fmt(linearity) << " Rf\n";
+  std::cout << "linearity in the gain (gain 3 direct vs by linearity, lambda " << t.lambdas[0] << " Rf): max "
+            << fmt(t.linearity) << " Rf\n";
+}
 
-  // ---- Figure 12 pipeline on noisy input --------------------------------------------------------
-  struct Pipeline_case { double noise; std::vector<Pipeline_row> rows; };
+struct Pipeline_case { double noise; std::vector<Pipeline_row> rows; };
+
+/// The Figure 12 pipeline on noisy input.
+static std::vector<Pipeline_case> figure12_cases()
+{
   std::vector<Pipeline_case> pipeline;
   for(double nr : {0.5, 1.})
   {
@@ -506,22 +522,25 @@ int main(int argc, char** argv)
       std::cout << "Figure 12, noise " << nr << " A, " << r.name << ": detail x" << fmt(r.g.detail) << ", noise x"
                 << fmt(r.g.noise) << ", drift " << fmt(r.drift) << " sigma\n";
   }
+  return pipeline;
+}
 
-  // ---- Where the lead is lost ----------------------------------------------------------------------
-  // At equal detail gain, the Wavejet filter's noise gain against each baseline's.
+/// Where the lead is lost: at equal detail gain, the Wavejet filter's noise gain against each baseline's.
+static std::string where_the_lead_is_lost(const Transfer& t)
+{
   std::ostringstream lost;
-  for(std::size_t K : orders)
+  for(std::size_t K : t.orders)
     for(std::size_t gi = 0; gi < 4; ++gi)
     {
       std::vector<std::string> where;
-      for(std::size_t l = 0; l < lambdas.size(); ++l)
+      for(std::size_t l = 0; l < t.lambdas.size(); ++l)
       {
-        const double wj = pos[K][l][gi].noise;
-        const double hb = husm[K][l][gi].noise, jb = jusm[K][l][gi].noise;
+        const double wj = t.pos.at(K)[l][gi].noise;
+        const double hb = t.husm.at(K)[l][gi].noise, jb = t.jusm.at(K)[l][gi].noise;
         std::string who;
         if(std::isfinite(hb) && hb < wj) who += "H-USM";
         if(std::isfinite(jb) && jb < wj) who += who.empty() ? "J-USM" : ", J-USM";
-        if(!who.empty()) where.push_back(fmt(lambdas[l], 2) + " (" + who + ")");
+        if(!who.empty()) where.push_back(fmt(t.lambdas[l], 2) + " (" + who + ")");
       }
       if(!where.empty())
       {
@@ -530,90 +549,94 @@ int main(int argc, char** argv)
         lost << "\n";
       }
     }
-  const std::string lost_text = lost.str().empty() ? "- nowhere in the tables\n" : lost.str();
-  std::cout << "Baselines with less noise than the Wavejet filter at equal detail gain:\n" << lost_text;
-  total.stop();
-  if(!write) return all_pass ? 0 : 1;
+  return lost.str().empty() ? "- nowhere in the tables\n" : lost.str();
+}
 
-  // ---- Data and plot -------------------------------------------------------------------------------
-  const auto write_gains = [&](const std::string& name, const std::string& header,
-                                std::map<std::size_t, std::vector<std::vector<Gain_pair> > >& R) {
-    std::ofstream f(out_dir + "/" + name);
-    f << header << "\n";
-    for(std::size_t l = 0; l < lambdas.size(); ++l)
-    {
-      f << lambdas[l];
-      for(std::size_t K : orders)
-        for(std::size_t gi = 0; gi < 4; ++gi) f << " " << R[K][l][gi].detail << " " << R[K][l][gi].noise;
-      f << "\n";
-    }
-  };
-  write_gains("filters_positions.dat", "# lambda/Rf, then per K (2 4 6 8) and gain (-1 0 2 3): detail gain, noise gain", pos);
-  write_gains("filters_normals.dat",
-              "# lambda/Rf, then per K (2 4 6 8) and gain (-1 0 2 3): detail gain, noise gain (relative to gain 1)", nrm);
+// ---------------------------------------------------------------------------------------------
+// Data, plot and report
+// ---------------------------------------------------------------------------------------------
+
+static void write_gains(const std::string& path, const std::string& header, const Transfer& t,
+                        const std::map<std::size_t, std::vector<std::vector<Gain_pair> > >& R)
+{
+  std::ofstream f(path);
+  f << header << "\n";
+  for(std::size_t l = 0; l < t.lambdas.size(); ++l)
+  {
+    f << t.lambdas[l];
+    for(std::size_t K : t.orders)
+      for(std::size_t gi = 0; gi < 4; ++gi) f << " " << R.at(K)[l][gi].detail << " " << R.at(K)[l][gi].noise;
+    f << "\n";
+  }
+}
+
+static void write_data_files(const std::string& out_dir, const Transfer& t)
+{
+  write_gains(out_dir + "/filters_positions.dat",
+              "# lambda/Rf, then per K (2 4 6 8) and gain (-1 0 2 3): detail gain, noise gain", t, t.pos);
+  write_gains(out_dir + "/filters_normals.dat",
+              "# lambda/Rf, then per K (2 4 6 8) and gain (-1 0 2 3): detail gain, noise gain (relative to gain 1)", t, t.nrm);
   {
     std::ofstream f(out_dir + "/filters_baselines.dat");
     f << "# lambda/Rf, then per K (2 4 6 8), gain 2: noise gain of WJ, H-USM and J-USM at WJ's detail gain,"
          " then J-USM at g = 2: detail gain, noise gain\n";
-    for(std::size_t l = 0; l < lambdas.size(); ++l)
+    for(std::size_t l = 0; l < t.lambdas.size(); ++l)
     {
-      f << lambdas[l];
-      for(std::size_t K : orders)
-        f << " " << pos[K][l][2].noise << " " << husm[K][l][2].noise << " " << jusm[K][l][2].noise
-          << " " << jusm_same[K][l][2].detail << " " << jusm_same[K][l][2].noise;
+      f << t.lambdas[l];
+      for(std::size_t K : t.orders)
+        f << " " << t.pos.at(K)[l][2].noise << " " << t.husm.at(K)[l][2].noise << " " << t.jusm.at(K)[l][2].noise
+          << " " << t.jusm_same.at(K)[l][2].detail << " " << t.jusm_same.at(K)[l][2].noise;
       f << "\n";
     }
   }
-  const std::string gp = out_dir + "/filters.gp";
-  {
-    // Column of (K index k, gain index g, detail 0 / noise 1) in filters_positions.dat / filters_normals.dat.
-    const auto col = [](int k, int g, int which) { return 2 + 8 * k + 2 * g + which; };
-    std::ofstream f(gp);
-    f << "# gnuplot script written by bench_filters; run from this directory: gnuplot filters.gp\n"
-      << "set terminal pngcairo size 1400,1000 font 'sans,11'\nset output 'filters.png'\n"
-      << "set multiplot layout 2,2\nset logscale x\nset xrange [1:20]\nset xtics (1,1.5,2,3,4,5,6,8,10,12,15,20)\n"
-      << "set xlabel 'detail wavelength lambda / Rf'\nset grid\nset key right top opaque box\n"
-      << "set title 'wavejet\\_enhance\\_positions: detail gain (gain 2: solid, 3: dashed, -1: dotted, 0: dash-dot)'\n"
-      << "set ylabel 'output / input amplitude'\nset yrange [-3:5]\n"
-      << "set arrow from 1,1 to 20,1 nohead lc rgb 'gray'\n"
-      << "plot ";
-    const char* colors[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd"};
-    const int gorder[] = {2, 3, 0, 1}; // gain index per dash type: 2 -> solid, 3 -> dashed, 0 -> dotted, 1 -> dash-dot
-    // One panel's plot command: per K index k from k_first and per variant v (dash type v + 1), the
-    // column column(k, v) of `dat`; the first variant of each K carries the legend.
-    const auto plot_lines = [&](const std::string& dat, int k_first, int variants, const std::function<int(int, int)>& column) {
-      bool first = true;
-      for(int k = k_first; k < 4; ++k)
-        for(int v = 0; v < variants; ++v)
-        {
-          f << (first ? "" : ", \\\n     ") << "'" << dat << "' u 1:" << column(k, v) << " w lp lw 2 pt 7 ps 0.6 dt "
-            << v + 1 << " lc rgb '" << colors[k] << "' " << (v == 0 ? "t 'K " + std::to_string(2 * k + 2) + "'" : "notitle");
-          first = false;
-        }
-    };
-    plot_lines("filters_positions.dat", 0, 4, [&](int k, int v) { return col(k, gorder[v], 0); });
-    f << "\nunset arrow\nset title 'wavejet\\_enhance\\_positions: noise gain (residual RMS out / in; same lines)'\n"
-      << "set ylabel 'output / input noise'\nset logscale y\nset yrange [0.1:10]\nset ytics (0.1,0.2,0.5,1,1.25,2,5,10)\nplot ";
-    plot_lines("filters_positions.dat", 0, 4, [&](int k, int v) { return col(k, gorder[v], 1); });
-    f << "\nunset logscale y\nset ytics auto\nset title 'wavejet\\_enhance\\_normals: tilt detail gain, relative to gain 1 (same lines)'\n"
-      << "set ylabel 'tilt amplitude / gain-1 tilt amplitude'\nset yrange [-1.5:4]\nset arrow from 1,1 to 20,1 nohead lc rgb 'gray'\nplot ";
-    plot_lines("filters_normals.dat", 1, 4, [&](int k, int v) { return col(k, gorder[v], 0); }); // K 2: no a_{-1}, no effect
-    f << "\nunset arrow\nset title 'Noise gain at equal detail gain, gain 2 (WJ solid, H-USM dashed, J-USM dotted)'\n"
-      << "set ylabel 'output / input noise'\nset logscale y\nset yrange [0.3:100]\nset ytics (0.5,1,1.25,2,5,10,20,50,100)\nplot ";
-    plot_lines("filters_baselines.dat", 0, 3, [&](int k, int v) { return 2 + 5 * k + v; });
-    f << "\nunset multiplot\n";
-  }
-  if(plot)
-  {
-    const std::string c = "cd '" + out_dir + "' && gnuplot filters.gp";
-    if(std::system(c.c_str()) != 0) std::cerr << "gnuplot failed or is missing: filters.png not written\n";
-  }
+}
 
-  // ---- Report --------------------------------------------------------------------------------------
-  std::ofstream md(out_dir + "/filters.md");
+static void write_plot_script(const std::string& out_dir)
+{
+  const std::string gp = out_dir + "/filters.gp";
+  // Column of (K index k, gain index g, detail 0 / noise 1) in filters_positions.dat / filters_normals.dat.
+  const auto col = [](int k, int g, int which) { return 2 + 8 * k + 2 * g + which; };
+  std::ofstream f(gp);
+  f << "# gnuplot script written by bench_filters; run from this directory: gnuplot filters.gp\n"
+    << "set terminal pngcairo size 1400,1000 font 'sans,11'\nset output 'filters.png'\n"
+    << "set multiplot layout 2,2\nset logscale x\nset xrange [1:20]\nset xtics (1,1.5,2,3,4,5,6,8,10,12,15,20)\n"
+    << "set xlabel 'detail wavelength lambda / Rf'\nset grid\nset key right top opaque box\n"
+    << "set title 'wavejet\\_enhance\\_positions: detail gain (gain 2: solid, 3: dashed, -1: dotted, 0: dash-dot)'\n"
+    << "set ylabel 'output / input amplitude'\nset yrange [-3:5]\n"
+    << "set arrow from 1,1 to 20,1 nohead lc rgb 'gray'\n"
+    << "plot ";
+  const char* colors[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd"};
+  const int gorder[] = {2, 3, 0, 1}; // gain index per dash type: 2 -> solid, 3 -> dashed, 0 -> dotted, 1 -> dash-dot
+  // One panel's plot command: per K index k from k_first and per variant v (dash type v + 1), the
+  // column column(k, v) of `dat`; the first variant of each K carries the legend.
+  const auto plot_lines = [&](const std::string& dat, int k_first, int variants, const std::function<int(int, int)>& column) {
+    bool first = true;
+    for(int k = k_first; k < 4; ++k)
+      for(int v = 0; v < variants; ++v)
+      {
+        f << (first ? "" : ", \\\n     ") << "'" << dat << "' u 1:" << column(k, v) << " w lp lw 2 pt 7 ps 0.6 dt "
+          << v + 1 << " lc rgb '" << colors[k] << "' " << (v == 0 ? "t 'K " + std::to_string(2 * k + 2) + "'" : "notitle");
+        first = false;
+      }
+  };
+  plot_lines("filters_positions.dat", 0, 4, [&](int k, int v) { return col(k, gorder[v], 0); });
+  f << "\nunset arrow\nset title 'wavejet\\_enhance\\_positions: noise gain (residual RMS out / in; same lines)'\n"
+    << "set ylabel 'output / input noise'\nset logscale y\nset yrange [0.1:10]\nset ytics (0.1,0.2,0.5,1,1.25,2,5,10)\nplot ";
+  plot_lines("filters_positions.dat", 0, 4, [&](int k, int v) { return col(k, gorder[v], 1); });
+  f << "\nunset logscale y\nset ytics auto\nset title 'wavejet\\_enhance\\_normals: tilt detail gain, relative to gain 1 (same lines)'\n"
+    << "set ylabel 'tilt amplitude / gain-1 tilt amplitude'\nset yrange [-1.5:4]\nset arrow from 1,1 to 20,1 nohead lc rgb 'gray'\nplot ";
+  plot_lines("filters_normals.dat", 1, 4, [&](int k, int v) { return col(k, gorder[v], 0); }); // K 2: no a_{-1}, no effect
+  f << "\nunset arrow\nset title 'Noise gain at equal detail gain, gain 2 (WJ solid, H-USM dashed, J-USM dotted)'\n"
+    << "set ylabel 'output / input noise'\nset logscale y\nset yrange [0.3:100]\nset ytics (0.5,1,1.25,2,5,10,20,50,100)\nplot ";
+  plot_lines("filters_baselines.dat", 0, 3, [&](int k, int v) { return 2 + 5 * k + v; });
+  f << "\nunset multiplot\n";
+}
+
+static void write_report_introduction(std::ostream& md, const Options& o, double total_seconds, const Transfer& t)
+{
   md << "# Transfer functions of the Wavejet filters\n\n"
-     << "Written by `" << cmd.str() << "` (source: `bench_filters.cpp`, which documents every definition) on "
-     << machine_description() << ", run time " << fmt(total.time(), 3) << " s.\n\n"
+     << "Written by `" << o.command << "` (source: `bench_filters.cpp`, which documents every definition) on "
+     << wavejets_bench::machine_description() << ", run time " << fmt(total_seconds, 3) << " s.\n\n"
      << "Surface: the plane z = A sin(2 pi x / lambda) + Gaussian noise along z (sigma = A / 10), A = Rf / 20, on a "
         "jittered grid of spacing Rf / 6 (about 113 points per neighborhood of radius Rf; the noise gains depend on "
         "this density, see the check below); radius neighborhoods of "
@@ -622,7 +645,7 @@ int main(int argc, char** argv)
         "and after the filter (after: at the moved points' x). Detail gain = a_out / a_in (signed: < 0 is an inverted "
         "detail), noise gain = RMS residual out / in. `wavejet_enhance_positions` with the clamp off (the gain "
         "is linear once the fits are done: the gains -1, 0 and 3 are p1 + (gain - 1)(p2 - p1) from the runs at "
-        "1 and 2; largest difference from a direct gain-3 run: " << fmt(linearity) << " Rf).\n"
+        "1 and 2; largest difference from a direct gain-3 run: " << fmt(t.linearity) << " Rf).\n"
      << "- **Normals:** the tilt pattern, i.e. the slope s_x = -n_x / n_z (exact: A w cos(w x)), fitted as "
         "a cos(w x) + b sin(w x) + c; the residual also counts the slope s_y (the pattern has none). The normal filter "
         "starts from the Wavejet's own normal (its gain 1, a denoised normal; the input normals only orient), so its "
@@ -634,7 +657,10 @@ int main(int argc, char** argv)
         "**J-USM** is p + (g - 1)(p - smooth(p)) with `CGAL::jet_smooth_point_set` (degree K). Both are linear in "
         "c or g; *at equal detail gain* solves the factor that gives the Wavejet filter's detail gain for the same "
         "lambda, K and gain. J-USM at g = gain is the comparison issue 13 quotes.\n\n";
+}
 
+static void write_check_table(std::ostream& md, const std::vector<Check>& checks)
+{
   md << "## Check (plane, lambda = 4 Rf, noise A / 10, K = 4, gain 2, direct run, default clamp Rf / 2)\n\n"
      << "The first row is the check (the benchmark's sampling, default evaluation radius); the others vary the "
         "density and `evaluation_radius`. *Noise alone*: RMS height difference between the outputs for the noisy and "
@@ -647,54 +673,59 @@ int main(int argc, char** argv)
        << fmt(c.noise_alone) << " | detail > 1.5, noise <= 1.25: **"
        << (c.pass ? "pass" : "FAIL") << "** | " << fmt(c.jet.detail) << " | " << fmt(c.jet.noise) << " |\n";
   md << "\n![Transfer functions](filters.png)\n\n";
+}
 
-  const auto table = [&](const std::string& title, std::map<std::size_t, std::vector<std::vector<Gain_pair> > >& R,
-                         bool with_kept) {
-    md << "## " << title << "\n\n";
-    for(std::size_t K : orders)
+static void write_gain_table(std::ostream& md, const std::string& title, const Transfer& t,
+                             const std::map<std::size_t, std::vector<std::vector<Gain_pair> > >& R, bool with_kept)
+{
+  md << "## " << title << "\n\n";
+  for(std::size_t K : t.orders)
+  {
+    md << "K = " << K << ":\n\n| lambda / Rf |";
+    if(with_kept) md << " kept |";
+    for(double g : gains) md << " gain " << g << " detail | gain " << g << " noise |";
+    md << "\n|---|";
+    if(with_kept) md << "---|";
+    for(std::size_t i = 0; i < 4; ++i) md << "---|---|";
+    md << "\n";
+    for(std::size_t l = 0; l < t.lambdas.size(); ++l)
     {
-      md << "K = " << K << ":\n\n| lambda / Rf |";
-      if(with_kept) md << " kept |";
-      for(double g : gains) md << " gain " << g << " detail | gain " << g << " noise |";
-      md << "\n|---|";
-      if(with_kept) md << "---|";
-      for(std::size_t i = 0; i < 4; ++i) md << "---|---|";
-      md << "\n";
-      for(std::size_t l = 0; l < lambdas.size(); ++l)
-      {
-        md << "| " << lambdas[l] << " |";
-        if(with_kept) md << " " << fmt(kept[K][l]) << " |";
-        for(std::size_t gi = 0; gi < 4; ++gi) md << " " << fmt(R[K][l][gi].detail) << " | " << fmt(R[K][l][gi].noise) << " |";
-        md << "\n";
-      }
+      md << "| " << t.lambdas[l] << " |";
+      if(with_kept) md << " " << fmt(t.kept.at(K)[l]) << " |";
+      for(std::size_t gi = 0; gi < 4; ++gi) md << " " << fmt(R.at(K)[l][gi].detail) << " | " << fmt(R.at(K)[l][gi].noise) << " |";
       md << "\n";
     }
-  };
-  table("wavejet_enhance_positions: detail gain and noise gain", pos, false);
-  table("wavejet_enhance_normals: tilt detail gain and noise gain, relative to gain 1", nrm, true);
+    md << "\n";
+  }
+}
 
+/// Noise gains against unsharp masking at equal detail gain (positions).
+static void write_baseline_tables(std::ostream& md, const Transfer& t)
+{
   md << "## Against unsharp masking at equal detail gain (positions)\n\n"
      << "Noise gain of each method when its factor is set to give the Wavejet filter's detail gain (WJ detail). "
         "n/a: the baseline's motion barely contains the pattern (no factor reaches it). Last two columns: J-USM at "
         "g = the Wavejet gain.\n\n";
-  for(std::size_t K : orders)
+  for(std::size_t K : t.orders)
     for(std::size_t gi : {std::size_t(2), std::size_t(3)})
     {
       md << "K = " << K << ", gain " << gains[gi] << ":\n\n"
          << "| lambda / Rf | WJ detail | WJ noise | H-USM noise | H-USM c / Rf^2 | J-USM noise | J-USM g | J-USM at g = " << gains[gi]
          << ": detail | noise |\n|---|---|---|---|---|---|---|---|---|\n";
-      for(std::size_t l = 0; l < lambdas.size(); ++l)
+      for(std::size_t l = 0; l < t.lambdas.size(); ++l)
       {
-        const Matched& hb = husm[K][l][gi];
-        const Matched& jb = jusm[K][l][gi];
-        md << "| " << lambdas[l] << " | " << fmt(pos[K][l][gi].detail) << " | " << fmt(pos[K][l][gi].noise) << " | "
+        const Matched& hb = t.husm.at(K)[l][gi];
+        const Matched& jb = t.jusm.at(K)[l][gi];
+        md << "| " << t.lambdas[l] << " | " << fmt(t.pos.at(K)[l][gi].detail) << " | " << fmt(t.pos.at(K)[l][gi].noise) << " | "
            << fmt(hb.noise) << " | " << fmt(hb.factor / (Rf * Rf)) << " | " << fmt(jb.noise) << " | " << fmt(1. + jb.factor) << " | "
-           << fmt(jusm_same[K][l][gi].detail) << " | " << fmt(jusm_same[K][l][gi].noise) << " |\n";
+           << fmt(t.jusm_same.at(K)[l][gi].detail) << " | " << fmt(t.jusm_same.at(K)[l][gi].noise) << " |\n";
       }
       md << "\n";
     }
-  md << "### Where the lead is lost\n\nConfigurations (all four gains) where a baseline has a lower noise gain than the "
-        "Wavejet filter at equal detail gain:\n\n" << lost_text << "\n";
+}
+
+static void write_figure12_table(std::ostream& md, const std::vector<Pipeline_case>& pipeline)
+{
   md << "## The Figure 12 pipeline on noisy input (`move_along_input_normals`)\n\n"
      << "Plane, lambda = 4 Rf, K = 4, gain 2, default clamp, noise sigma = A / 2 and A (5 and 10 times the noise "
         "above). *default*: `wavejet_enhance_positions` alone; the others first filter the normals with "
@@ -708,7 +739,46 @@ int main(int argc, char** argv)
       md << "| " << fmt(c.noise, 2) << " A | " << r.name << " | " << fmt(r.g.detail) << " | " << fmt(r.g.noise) << " | "
          << fmt(r.drift) << " |\n";
   md << "\n";
+}
 
-  std::cerr << "wrote " << out_dir << "/filters.md (" << fmt(total.time(), 3) << " s)\n";
+// ---------------------------------------------------------------------------------------------
+// Main
+// ---------------------------------------------------------------------------------------------
+
+int main(int argc, char** argv)
+{
+  Options o;
+  if(!parse_command_line(argc, argv, o)) return 2;
+  CGAL::Real_timer total;
+  total.start();
+  const Transfer t = measure_transfer(o.quick, total);
+  const std::vector<Check> checks = headline_checks();
+  const bool all_pass = checks[0].pass;
+  print_checks(checks, t);
+  const std::vector<Pipeline_case> pipeline = figure12_cases();
+  const std::string lost_text = where_the_lead_is_lost(t);
+  std::cout << "Baselines with less noise than the Wavejet filter at equal detail gain:\n" << lost_text;
+  total.stop();
+  if(!o.write()) return all_pass ? 0 : 1;
+
+  write_data_files(o.out_dir, t);
+  write_plot_script(o.out_dir);
+  if(o.plot)
+  {
+    const std::string c = "cd '" + o.out_dir + "' && gnuplot filters.gp";
+    if(std::system(c.c_str()) != 0) std::cerr << "gnuplot failed or is missing: filters.png not written\n";
+  }
+
+  std::ofstream md(o.out_dir + "/filters.md");
+  write_report_introduction(md, o, total.time(), t);
+  write_check_table(md, checks);
+  write_gain_table(md, "wavejet_enhance_positions: detail gain and noise gain", t, t.pos, false);
+  write_gain_table(md, "wavejet_enhance_normals: tilt detail gain and noise gain, relative to gain 1", t, t.nrm, true);
+  write_baseline_tables(md, t);
+  md << "### Where the lead is lost\n\nConfigurations (all four gains) where a baseline has a lower noise gain than the "
+        "Wavejet filter at equal detail gain:\n\n" << lost_text << "\n";
+  write_figure12_table(md, pipeline);
+
+  std::cerr << "wrote " << o.out_dir << "/filters.md (" << fmt(total.time(), 3) << " s)\n";
   return all_pass ? 0 : 1;
 }

@@ -46,12 +46,9 @@
 #include <memory>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
-#ifdef CGAL_LINKED_WITH_TBB
-#include <tbb/info.h>
-#endif
+#include "bench_common.h"
 
 typedef CGAL::Exact_predicates_inexact_constructions_kernel Kernel;
 typedef Kernel::Point_3 Point;
@@ -259,18 +256,7 @@ static std::vector<Estimate> run(int e, const Dataset& d, const std::map<std::si
       for(std::size_t j : hood) pts.push_back(d.points[j]);
       if(e == CGAL2 || e == CGAL3 || e == CGAL4)
       {
-        std::size_t deg = K;
-        while(deg >= 2 && double(pts.size()) < 1.1 * double((deg + 1) * (deg + 2) / 2)) --deg; // WJ's adaptive rule
-        if(deg < 2) continue;
-        Monge_fitting::Monge_form m = monge(pts.begin(), pts.end(), deg, 2);
-        m.comply_wrt_given_normal(Vector(t.normal.x(), t.normal.y(), t.normal.z()));
-        r.k1 = m.principal_curvatures(0);
-        r.k2 = m.principal_curvatures(1);
-        r.H = 0.5 * (r.k1 + r.k2);
-        r.K = r.k1 * r.k2;
-        const Vector n = m.normal_direction();
-        r.n = WB::V3(n.x(), n.y(), n.z());
-        r.ok = true;
+        WB::jet_estimate(monge, pts, K, Vector(t.normal.x(), t.normal.y(), t.normal.z()), r);
       }
       else if(!is_ponca(e))
       {
@@ -392,24 +378,9 @@ static std::string fmt(double v, int prec = 3)
   return s.str();
 }
 
-static std::string machine_description()
+/// Reads the options; false on a usage error.
+static bool parse_command_line(int argc, char** argv, Options& o)
 {
-  std::string cpu = "unknown CPU";
-  std::ifstream f("/proc/cpuinfo");
-  std::string line;
-  while(std::getline(f, line))
-    if(line.rfind("model name", 0) == 0) { cpu = line.substr(line.find(':') + 2); break; }
-  std::ostringstream s;
-  s << cpu << ", " << std::thread::hardware_concurrency() << " hardware threads";
-#ifdef CGAL_LINKED_WITH_TBB
-  s << ", TBB with " << tbb::info::default_concurrency() << " threads";
-#endif
-  return s.str();
-}
-
-int main(int argc, char** argv)
-{
-  Options o;
   std::ostringstream cmd;
   cmd << "bench_ponca_accuracy";
   for(int i = 1; i < argc; ++i)
@@ -422,38 +393,54 @@ int main(int argc, char** argv)
     else
     {
       std::cerr << "usage: bench_ponca_accuracy [--points N] [--eval M] [--out DIR] [--quick]\n";
-      return 2;
+      return false;
     }
   }
   o.command = cmd.str();
-  if(!have_ponca)
-    std::cerr << "Ponca not found at configure time (see benchmark/Wavejets/CMakeLists.txt): the APSS and ASO "
-                 "columns are skipped.\n";
+  return true;
+}
 
+static std::vector<std::unique_ptr<WB::Surface> > benchmark_surfaces(bool quick)
+{
   std::vector<std::unique_ptr<WB::Surface> > surfaces;
   surfaces.emplace_back(new WB::Sphere);
   surfaces.emplace_back(new WB::Ellipsoid);
   surfaces.emplace_back(new WB::Torus);
   surfaces.emplace_back(new WB::Goursat);
   surfaces.emplace_back(new WB::Cylinder);
-  if(o.quick) { surfaces.erase(surfaces.begin() + 3, surfaces.end()); surfaces.erase(surfaces.begin() + 1); }
-  const std::vector<double> noises = o.quick ? std::vector<double>{0., 0.5} : std::vector<double>{0., 0.25, 0.5, 1.};
-  const std::vector<unsigned int> ks = o.quick ? std::vector<unsigned int>{20, 100} : std::vector<unsigned int>{20, 50, 100, 200};
+  if(quick) { surfaces.erase(surfaces.begin() + 3, surfaces.end()); surfaces.erase(surfaces.begin() + 1); }
+  return surfaces;
+}
 
-  // results[surface][noise][k][estimator]
+/// The noise x k grid and its results[surface][noise][k][estimator].
+struct Grid
+{
+  std::vector<double> noises;
+  std::vector<unsigned int> ks;
   std::map<std::string, std::map<double, std::map<unsigned int, std::vector<Result> > > > results;
-  CGAL::Real_timer total;
-  total.start();
+};
+
+static const std::vector<Result>& row_of(const Grid& g, const std::string& surface, double noise, unsigned int k)
+{
+  return g.results.at(surface).at(noise).at(k);
+}
+
+/// Every estimator on every (surface, noise, k).
+static Grid run_grid(const Options& o, const std::vector<std::unique_ptr<WB::Surface> >& surfaces, CGAL::Real_timer& total)
+{
+  Grid g;
+  g.noises = o.quick ? std::vector<double>{0., 0.5} : std::vector<double>{0., 0.25, 0.5, 1.};
+  g.ks = o.quick ? std::vector<unsigned int>{20, 100} : std::vector<unsigned int>{20, 50, 100, 200};
   for(std::size_t s = 0; s < surfaces.size(); ++s)
-    for(double noise : noises)
+    for(double noise : g.noises)
     {
       Dataset d = make_dataset(*surfaces[s], s, o, noise);
-      for(unsigned int k : ks)
+      for(unsigned int k : g.ks)
       {
         gather(d, k);
         std::map<std::size_t, std::vector<WB::V3> > wj_normals;
         for(std::size_t K = 2; K <= 4; ++K) wj_normals[K] = wavejet_normals(d, k, K);
-        std::vector<Result>& row = results[surfaces[s]->name()][noise][k];
+        std::vector<Result>& row = g.results[surfaces[s]->name()][noise][k];
         row.assign(NUM_ESTIMATORS, Result());
         for(int e = 0; e < NUM_ESTIMATORS; ++e)
           if(!is_ponca(e) || have_ponca) row[e] = evaluate(run(e, d, wj_normals), d);
@@ -462,103 +449,120 @@ int main(int argc, char** argv)
                   << " s)\n";
       }
     }
-  total.stop();
+  return g;
+}
 
-  // Check once that the Hermite rows are what the one-call pipeline computes:
-  // wavejet_estimate_curvatures(order(2).use_neighbor_normals(true)) without a normal map.
+/// Check once that the Hermite rows are what the one-call pipeline computes:
+/// wavejet_estimate_curvatures(order(2).use_neighbor_normals(true)) without a normal map.
+static double one_call_pipeline_difference(const Options& o, const std::vector<std::unique_ptr<WB::Surface> >& surfaces)
+{
   double pipeline_difference = 0.;
-  {
-    Dataset d = make_dataset(*surfaces.back(), surfaces.size() - 1, o, o.quick ? 0.5 : 0.25);
-    gather(d, 50);
-    std::map<std::size_t, std::vector<WB::V3> > wj_normals;
-    wj_normals[2] = wavejet_normals(d, 50, 2);
-    const std::vector<Estimate> est = run(WJH2, d, wj_normals);
-    std::vector<double> H(d.points.size(), 0.);
-    std::vector<std::size_t> idx(d.points.size());
-    for(std::size_t i = 0; i < idx.size(); ++i) idx[i] = i;
-    CGAL::wavejet_estimate_curvatures<Tag>(idx, 50, WP::order(2).use_neighbor_normals(true)
-      .mean_curvature_map(CGAL::make_property_map(H)).point_map(CGAL::make_property_map(d.points)));
-    for(std::size_t e = 0; e < d.eval.size(); ++e)
-      pipeline_difference = std::max(pipeline_difference, std::abs(std::abs(H[d.eval[e]]) - std::abs(est[e].H)) /
-                                                             (1e-12 + std::abs(est[e].H)));
-  }
+  Dataset d = make_dataset(*surfaces.back(), surfaces.size() - 1, o, o.quick ? 0.5 : 0.25);
+  gather(d, 50);
+  std::map<std::size_t, std::vector<WB::V3> > wj_normals;
+  wj_normals[2] = wavejet_normals(d, 50, 2);
+  const std::vector<Estimate> est = run(WJH2, d, wj_normals);
+  std::vector<double> H(d.points.size(), 0.);
+  std::vector<std::size_t> idx(d.points.size());
+  for(std::size_t i = 0; i < idx.size(); ++i) idx[i] = i;
+  CGAL::wavejet_estimate_curvatures<Tag>(idx, 50, WP::order(2).use_neighbor_normals(true)
+    .mean_curvature_map(CGAL::make_property_map(H)).point_map(CGAL::make_property_map(d.points)));
+  for(std::size_t e = 0; e < d.eval.size(); ++e)
+    pipeline_difference = std::max(pipeline_difference, std::abs(std::abs(H[d.eval[e]]) - std::abs(est[e].H)) /
+                                                           (1e-12 + std::abs(est[e].H)));
+  return pipeline_difference;
+}
 
-  // Speed of the Hermite fit: wavejet_estimate_curvatures, Sequential_tag, torus, noise 0.25%, k = 50.
+/// Speed of the Hermite fit: wavejet_estimate_curvatures, Sequential_tag, torus, noise 0.25%, k = 50 (a table).
+static std::string hermite_speed_table(const Options& o)
+{
   std::ostringstream speed;
+  WB::Torus T;
+  Dataset d = make_dataset(T, 2, o, 0.25);
+  std::vector<std::size_t> idx(d.points.size());
+  for(std::size_t i = 0; i < idx.size(); ++i) idx[i] = i;
+  std::vector<Vector> normals(d.points.size());
+  const std::vector<WB::V3> wn = wavejet_normals(d, 50, 2);
+  for(std::size_t i = 0; i < wn.size(); ++i) normals[i] = Vector(wn[i].x(), wn[i].y(), wn[i].z());
+  std::vector<double> H(d.points.size());
+  speed << "| K | plain fit (s) | Hermite fit, normals given (s) | ratio | one-call pipeline (s) |\n| --- | --- | --- | --- | --- |\n";
+  for(std::size_t K = 2; K <= 4; K += 2)
   {
-    WB::Torus T;
-    Dataset d = make_dataset(T, 2, o, 0.25);
-    std::vector<std::size_t> idx(d.points.size());
-    for(std::size_t i = 0; i < idx.size(); ++i) idx[i] = i;
-    std::vector<Vector> normals(d.points.size());
-    const std::vector<WB::V3> wn = wavejet_normals(d, 50, 2);
-    for(std::size_t i = 0; i < wn.size(); ++i) normals[i] = Vector(wn[i].x(), wn[i].y(), wn[i].z());
-    std::vector<double> H(d.points.size());
-    speed << "| K | plain fit (s) | Hermite fit, normals given (s) | ratio | one-call pipeline (s) |\n| --- | --- | --- | --- | --- |\n";
-    for(std::size_t K = 2; K <= 4; K += 2)
-    {
-      auto time_it = [&](auto np) {
-        double best = 1e300;
-        for(int rep = 0; rep < 3; ++rep)
-        {
-          CGAL::Real_timer t;
-          t.start();
-          CGAL::wavejet_estimate_curvatures<CGAL::Sequential_tag>(idx, 50, np.mean_curvature_map(CGAL::make_property_map(H))
-            .point_map(CGAL::make_property_map(d.points)).normal_map(CGAL::make_property_map(normals)));
-          best = std::min(best, t.time());
-        }
-        return best;
-      };
-      const double plain = time_it(WP::order(K));
-      const double hermite = time_it(WP::order(K).use_neighbor_normals(true));
-      double pipeline = 1e300;
+    auto time_it = [&](auto np) {
+      double best = 1e300;
       for(int rep = 0; rep < 3; ++rep)
       {
         CGAL::Real_timer t;
         t.start();
-        CGAL::wavejet_estimate_curvatures<CGAL::Sequential_tag>(idx, 50, WP::order(K).use_neighbor_normals(true)
-          .mean_curvature_map(CGAL::make_property_map(H)).point_map(CGAL::make_property_map(d.points)));
-        pipeline = std::min(pipeline, t.time());
+        CGAL::wavejet_estimate_curvatures<CGAL::Sequential_tag>(idx, 50, np.mean_curvature_map(CGAL::make_property_map(H))
+          .point_map(CGAL::make_property_map(d.points)).normal_map(CGAL::make_property_map(normals)));
+        best = std::min(best, t.time());
       }
-      speed << "| " << K << " | " << fmt(plain) << " | " << fmt(hermite) << " | " << fmt(hermite / plain, 3) << " | "
-            << fmt(pipeline) << " |\n";
-    }
-  }
-
-  // Outliers: sphere, 5% outliers (moved by up to 2.5% of the diagonal), K = 4, radius 0.2, Tukey IRLS (3 passes).
-  std::ostringstream outliers;
-  double outlier_plain = 0., outlier_robust = 0., outlier_hermite = 0.;
-  {
-    WB::Sphere S;
-    std::vector<WB::Sample> smp = S.sample(o.points, 77);
-    WB::add_outliers(smp, 0.05, 0.025 * WB::bounding_box_diagonal(smp), 78);
-    std::vector<Point> pts;
-    for(const WB::Sample& x : smp) pts.emplace_back(x.p.x(), x.p.y(), x.p.z());
-    std::vector<std::size_t> idx(pts.size());
-    for(std::size_t i = 0; i < idx.size(); ++i) idx[i] = i;
-    auto error = [&](std::size_t robust, bool hermite) {
-      std::vector<double> H(pts.size(), 0.);
-      CGAL::wavejet_estimate_curvatures<Tag>(idx, 0, WP::order(4).robust_iterations(robust).use_neighbor_normals(hermite)
-        .mean_curvature_map(CGAL::make_property_map(H)).neighbor_radius(0.2).point_map(CGAL::make_property_map(pts)));
-      double e = 0.;
-      std::size_t n = 0;
-      for(std::size_t i = 0; i < pts.size(); ++i)
-        if(smp[i].inlier) { e += (std::abs(H[i]) - 1.) * (std::abs(H[i]) - 1.); ++n; } // unit sphere: |H| = 1
-      return std::sqrt(e / double(n));
+      return best;
     };
-    outlier_plain = error(0, false);
-    outlier_robust = error(3, false);
-    outlier_hermite = error(3, true);
-    outliers << "| estimator | H RMSE |\n| --- | --- |\n| WJ-4 | " << fmt(outlier_plain) << " |\n| WJ-4, robust_iterations(3) | "
-             << fmt(outlier_robust) << " |\n| WJH-4 (one-call Hermite pipeline), robust_iterations(3) | " << fmt(outlier_hermite) << " |\n";
+    const double plain = time_it(WP::order(K));
+    const double hermite = time_it(WP::order(K).use_neighbor_normals(true));
+    double pipeline = 1e300;
+    for(int rep = 0; rep < 3; ++rep)
+    {
+      CGAL::Real_timer t;
+      t.start();
+      CGAL::wavejet_estimate_curvatures<CGAL::Sequential_tag>(idx, 50, WP::order(K).use_neighbor_normals(true)
+        .mean_curvature_map(CGAL::make_property_map(H)).point_map(CGAL::make_property_map(d.points)));
+      pipeline = std::min(pipeline, t.time());
+    }
+    speed << "| " << K << " | " << fmt(plain) << " | " << fmt(hermite) << " | " << fmt(hermite / plain, 3) << " | "
+          << fmt(pipeline) << " |\n";
   }
+  return speed.str();
+}
 
-  // ---- Report ---------------------------------------------------------------------------------
-  std::ostringstream md;
+/// Outliers: sphere, 5% outliers (moved by up to 2.5% of the diagonal), K = 4, radius 0.2, Tukey IRLS (3 passes).
+struct Outlier_errors
+{
+  double plain = 0., robust = 0., hermite = 0.;
+  std::string table;
+};
+
+static Outlier_errors outlier_experiment(const Options& o)
+{
+  Outlier_errors r;
+  WB::Sphere S;
+  std::vector<WB::Sample> smp = S.sample(o.points, 77);
+  WB::add_outliers(smp, 0.05, 0.025 * WB::bounding_box_diagonal(smp), 78);
+  std::vector<Point> pts;
+  for(const WB::Sample& x : smp) pts.emplace_back(x.p.x(), x.p.y(), x.p.z());
+  std::vector<std::size_t> idx(pts.size());
+  for(std::size_t i = 0; i < idx.size(); ++i) idx[i] = i;
+  auto error = [&](std::size_t robust, bool hermite) {
+    std::vector<double> H(pts.size(), 0.);
+    CGAL::wavejet_estimate_curvatures<Tag>(idx, 0, WP::order(4).robust_iterations(robust).use_neighbor_normals(hermite)
+      .mean_curvature_map(CGAL::make_property_map(H)).neighbor_radius(0.2).point_map(CGAL::make_property_map(pts)));
+    double e = 0.;
+    std::size_t n = 0;
+    for(std::size_t i = 0; i < pts.size(); ++i)
+      if(smp[i].inlier) { e += (std::abs(H[i]) - 1.) * (std::abs(H[i]) - 1.); ++n; } // unit sphere: |H| = 1
+    return std::sqrt(e / double(n));
+  };
+  r.plain = error(0, false);
+  r.robust = error(3, false);
+  r.hermite = error(3, true);
+  std::ostringstream outliers;
+  outliers << "| estimator | H RMSE |\n| --- | --- |\n| WJ-4 | " << fmt(r.plain) << " |\n| WJ-4, robust_iterations(3) | "
+           << fmt(r.robust) << " |\n| WJH-4 (one-call Hermite pipeline), robust_iterations(3) | " << fmt(r.hermite) << " |\n";
+  r.table = outliers.str();
+  return r;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Report
+
+static void write_introduction(std::ostream& md, const Options& o, double table_seconds, double pipeline_difference)
+{
   md << "# Accuracy against Ponca (APSS, ASO) and CGAL jets\n\n"
      << "Written by `build/<folder>/benchmark/Wavejets/" << o.command << "` (" << o.points << " points per surface, "
-     << o.eval << " evaluation points at least 0.3 from a border) on " << machine_description() << "; run time "
-     << fmt(total.time(), 3) << " s for the tables.\n\n"
+     << o.eval << " evaluation points at least 0.3 from a border) on " << WB::machine_description(false) << "; run time "
+     << fmt(table_seconds, 3) << " s for the tables.\n\n"
      << "Every estimator sees the same k-nearest neighborhoods (the package's neighbor query; the query point "
         "first, then its k neighbors). Gaussian noise of the given fraction of the bounding-box diagonal on every "
         "coordinate. Errors against the exact curvature of the surface point each sample came from. "
@@ -580,21 +584,26 @@ int main(int argc, char** argv)
      << "| ASO-s | Ponca's algebraic shape operator: APSS with smooth weights differentiated in space "
         "(`OrientedSphereDer`, `MlsSphereFitDer`, `NormalDerivativeWeingartenEstimator`) |\n\n";
   if(!have_ponca) md << "**Ponca was not found when this program was configured: its columns are missing.**\n\n";
+}
 
+static std::string table_header(const std::vector<int>& cols, const std::string& first)
+{
+  std::string h = "| " + first + " |", sep = "| --- |";
+  for(int e : cols) { h += std::string(" ") + estimator_name[e] + " |"; sep += " --- |"; }
+  return h + "\n" + sep + "\n";
+}
+
+static void write_relative_H_tables(std::ostream& md, const std::vector<std::unique_ptr<WB::Surface> >& surfaces, const Grid& g)
+{
   const std::vector<int> main_cols = {CGAL2, WJ2, WJ3, WJ4, WJH2, WJH3, WJH4, WJH2P, WJH2_W03, WJH2_W3, APSS_C, APSS_S, ASO_S};
-  auto header = [&](const std::vector<int>& cols, const std::string& first) {
-    std::string h = "| " + first + " |", sep = "| --- |";
-    for(int e : cols) { h += std::string(" ") + estimator_name[e] + " |"; sep += " --- |"; }
-    return h + "\n" + sep + "\n";
-  };
   md << "## Relative RMSE of the mean curvature H\n\nBest of each row in bold.\n\n";
   for(const auto& S : surfaces)
   {
-    md << "### " << S->name() << "\n\n" << header(main_cols, "noise, k");
-    for(double noise : noises)
-      for(unsigned int k : ks)
+    md << "### " << S->name() << "\n\n" << table_header(main_cols, "noise, k");
+    for(double noise : g.noises)
+      for(unsigned int k : g.ks)
       {
-        const std::vector<Result>& row = results[S->name()][noise][k];
+        const std::vector<Result>& row = row_of(g, S->name(), noise, k);
         double best = 1e300;
         for(int e : main_cols) if(row[e].present) best = std::min(best, row[e].relH);
         md << "| " << noise << "%, " << k << " |";
@@ -608,7 +617,11 @@ int main(int argc, char** argv)
       }
     md << "\n";
   }
+}
 
+static void write_all_errors(std::ostream& md, const Options& o, const std::vector<std::unique_ptr<WB::Surface> >& surfaces,
+                             const Grid& g)
+{
   const double ref_noise = o.quick ? 0.5 : 0.25;
   const unsigned int ref_k = o.quick ? 20 : 50;
   md << "## All errors at noise " << ref_noise << "%, k = " << ref_k << "\n\n";
@@ -616,19 +629,22 @@ int main(int argc, char** argv)
   {
     md << "### " << S->name() << "\n\n| estimator | rel. H | H | K_G | k1 | k2 | normal (deg) | failed |\n"
        << "| --- | --- | --- | --- | --- | --- | --- | --- |\n";
-    const std::vector<Result>& row = results[S->name()][ref_noise][ref_k];
+    const std::vector<Result>& row = row_of(g, S->name(), ref_noise, ref_k);
     for(int e = 0; e < NUM_ESTIMATORS; ++e)
       if(row[e].present)
         md << "| " << estimator_name[e] << " | " << fmt(row[e].relH) << " | " << fmt(row[e].H) << " | " << fmt(row[e].K) << " | "
            << fmt(row[e].k1) << " | " << fmt(row[e].k2) << " | " << fmt(row[e].angle) << " | " << row[e].failed << " |\n";
     md << "\n";
   }
+}
 
+static void write_weights_table(std::ostream& md, const std::vector<std::unique_ptr<WB::Surface> >& surfaces, const Grid& g)
+{
   md << "## Weights: compact (1 - (d/Rf)^2)^2 against constant\n\nRatio of the relative H RMSE with compact weights to "
         "that with constant weights, mean over the surfaces (geometric mean; below 1: the compact weights help).\n\n"
      << "| noise, k | WJ-2 | WJ-4 | WJH-2 | WJH-4 | APSS |\n| --- | --- | --- | --- | --- | --- |\n";
-  for(double noise : noises)
-    for(unsigned int k : ks)
+  for(double noise : g.noises)
+    for(unsigned int k : g.ks)
     {
       md << "| " << noise << "%, " << k << " |";
       const int pairs[5][2] = {{WJ2C, WJ2}, {WJ4C, WJ4}, {WJH2C, WJH2}, {WJH4C, WJH4}, {APSS_S, APSS_C}};
@@ -638,7 +654,7 @@ int main(int argc, char** argv)
         int n = 0;
         for(const auto& S : surfaces)
         {
-          const std::vector<Result>& row = results[S->name()][noise][k];
+          const std::vector<Result>& row = row_of(g, S->name(), noise, k);
           if(!row[p[0]].present || !row[p[1]].present || !(row[p[1]].relH > 0)) continue;
           log_sum += std::log(row[p[0]].relH / row[p[1]].relH);
           ++n;
@@ -647,72 +663,102 @@ int main(int argc, char** argv)
       }
       md << "\n";
     }
-  md << "\n## Outliers\n\nUnit sphere, " << o.points << " points, 5% outliers (moved uniformly in a ball of radius 2.5% of the "
-        "diagonal, not evaluated), K = 4, `neighbor_radius(0.2)`, no normal map (|H| against 1), all inliers evaluated.\n\n"
-     << outliers.str();
-  md << "\n## Speed of the Hermite fit\n\n`wavejet_estimate_curvatures<Sequential_tag>`, torus, " << o.points
-     << " points, noise 0.25%, k = 50, best of 3; the Hermite fit with the neighbors' normals given as the normal map, "
-        "and the one-call pipeline (no normal map: normals estimated first, then the Hermite fit).\n\n"
-     << speed.str() << "\n";
+}
 
-  // Targets of the accuracy issue, checked on the tables above.
-  if(!o.quick)
-  {
-    auto rel = [&](const std::string& s, double n, unsigned int k, int e) { return results[s][n][k][e].relH; };
-    md << "\n## Targets\n\n**Noisy (0.25% and 0.5%), WJH-2 (`order(2).use_neighbor_normals(true)`) against APSS**: ratio of "
-          "the relative H RMSE (below 1: WJH-2 more precise), and the best Wavejet column of the row.\n\n"
-       << "| surface, noise | k = 20 | k = 50 | k = 100 | k = 200 | target |\n| --- | --- | --- | --- | --- | --- |\n";
-    for(const std::string s : {"torus", "ellipsoid", "sphere"})
-      for(double n : {0.25, 0.5})
-      {
-        md << "| " << s << ", " << n << "% |";
-        bool ok = true;
-        const double limit = s == "sphere" ? 1.1 : 1.;
-        for(unsigned int k : ks)
-        {
-          const double r = rel(s, n, k, WJH2) / rel(s, n, k, APSS_C);
-          ok = ok && r < limit;
-          int best = WJ2;
-          for(int e = WJ2; e <= WJH4C; ++e) if(rel(s, n, k, e) < rel(s, n, k, best)) best = e;
-          md << " " << fmt(r) << " (best " << estimator_name[best] << ": " << fmt(rel(s, n, k, best) / rel(s, n, k, APSS_C)) << ") |";
-        }
-        md << " " << (s == "sphere" ? "< 1.1" : "< 1") << ": " << (ok ? "holds" : "**fails**") << " |\n";
-      }
-    md << "\n**Clean data**: Hermite against plain at the same K (ratio of relative H RMSE, target <= 1.5), and APSS against "
-          "the Hermite fit at K = 4 (target >= 5).\n\n| surface | k | WJH-2/WJ-2 | WJH-3/WJ-3 | WJH-4/WJ-4 | APSS/WJH-4 |\n"
-          "| --- | --- | --- | --- | --- | --- |\n";
-    for(const std::string s : {"torus", "ellipsoid", "sphere", "goursat", "cylinder"})
-      for(unsigned int k : ks)
-        md << "| " << s << " | " << k << " | " << fmt(rel(s, 0., k, WJH2) / rel(s, 0., k, WJ2)) << " | "
-           << fmt(rel(s, 0., k, WJH3) / rel(s, 0., k, WJ3)) << " | " << fmt(rel(s, 0., k, WJH4) / rel(s, 0., k, WJ4)) << " | "
-           << fmt(rel(s, 0., k, APSS_C) / rel(s, 0., k, WJH4)) << " |\n";
-    md << "\n**k1 and k2 at noise 0.25%, k = 50**: RMSE of the best CGAL jet (degree 2 to 4) divided by that of WJH-2 "
-          "(target >= 2).\n\n| surface | k1 | k2 |\n| --- | --- | --- |\n";
-    for(const auto& S : surfaces)
+/// Targets of the accuracy issue, checked on the tables above.
+static void write_targets(std::ostream& md, const std::vector<std::unique_ptr<WB::Surface> >& surfaces, const Grid& g,
+                          const Outlier_errors& outl)
+{
+  auto rel = [&](const std::string& s, double n, unsigned int k, int e) { return row_of(g, s, n, k)[e].relH; };
+  md << "\n## Targets\n\n**Noisy (0.25% and 0.5%), WJH-2 (`order(2).use_neighbor_normals(true)`) against APSS**: ratio of "
+        "the relative H RMSE (below 1: WJH-2 more precise), and the best Wavejet column of the row.\n\n"
+     << "| surface, noise | k = 20 | k = 50 | k = 100 | k = 200 | target |\n| --- | --- | --- | --- | --- | --- |\n";
+  for(const std::string s : {"torus", "ellipsoid", "sphere"})
+    for(double n : {0.25, 0.5})
     {
-      const std::vector<Result>& row = results[S->name()][0.25][50];
-      const double c1 = std::min({row[CGAL2].k1, row[CGAL3].k1, row[CGAL4].k1}), c2 = std::min({row[CGAL2].k2, row[CGAL3].k2, row[CGAL4].k2});
-      md << "| " << S->name() << " | " << fmt(c1 / row[WJH2].k1) << " | " << fmt(c2 / row[WJH2].k2) << " |\n";
+      md << "| " << s << ", " << n << "% |";
+      bool ok = true;
+      const double limit = s == "sphere" ? 1.1 : 1.;
+      for(unsigned int k : g.ks)
+      {
+        const double r = rel(s, n, k, WJH2) / rel(s, n, k, APSS_C);
+        ok = ok && r < limit;
+        int best = WJ2;
+        for(int e = WJ2; e <= WJH4C; ++e) if(rel(s, n, k, e) < rel(s, n, k, best)) best = e;
+        md << " " << fmt(r) << " (best " << estimator_name[best] << ": " << fmt(rel(s, n, k, best) / rel(s, n, k, APSS_C)) << ") |";
+      }
+      md << " " << (s == "sphere" ? "< 1.1" : "< 1") << ": " << (ok ? "holds" : "**fails**") << " |\n";
     }
-    md << "\n**Outliers**: robust Hermite " << fmt(outlier_hermite) << " against robust plain " << fmt(outlier_robust)
-       << " and plain " << fmt(outlier_plain) << " (section Outliers). **Speed**: see the ratio column of the speed table.\n";
+  md << "\n**Clean data**: Hermite against plain at the same K (ratio of relative H RMSE, target <= 1.5), and APSS against "
+        "the Hermite fit at K = 4 (target >= 5).\n\n| surface | k | WJH-2/WJ-2 | WJH-3/WJ-3 | WJH-4/WJ-4 | APSS/WJH-4 |\n"
+        "| --- | --- | --- | --- | --- | --- |\n";
+  for(const std::string s : {"torus", "ellipsoid", "sphere", "goursat", "cylinder"})
+    for(unsigned int k : g.ks)
+      md << "| " << s << " | " << k << " | " << fmt(rel(s, 0., k, WJH2) / rel(s, 0., k, WJ2)) << " | "
+         << fmt(rel(s, 0., k, WJH3) / rel(s, 0., k, WJ3)) << " | " << fmt(rel(s, 0., k, WJH4) / rel(s, 0., k, WJ4)) << " | "
+         << fmt(rel(s, 0., k, APSS_C) / rel(s, 0., k, WJH4)) << " |\n";
+  md << "\n**k1 and k2 at noise 0.25%, k = 50**: RMSE of the best CGAL jet (degree 2 to 4) divided by that of WJH-2 "
+        "(target >= 2).\n\n| surface | k1 | k2 |\n| --- | --- | --- |\n";
+  for(const auto& S : surfaces)
+  {
+    const std::vector<Result>& row = row_of(g, S->name(), 0.25, 50);
+    const double c1 = std::min({row[CGAL2].k1, row[CGAL3].k1, row[CGAL4].k1}), c2 = std::min({row[CGAL2].k2, row[CGAL3].k2, row[CGAL4].k2});
+    md << "| " << S->name() << " | " << fmt(c1 / row[WJH2].k1) << " | " << fmt(c2 / row[WJH2].k2) << " |\n";
   }
+  md << "\n**Outliers**: robust Hermite " << fmt(outl.hermite) << " against robust plain " << fmt(outl.robust)
+     << " and plain " << fmt(outl.plain) << " (section Outliers). **Speed**: see the ratio column of the speed table.\n";
+}
 
-  // dat + plot: relative H RMSE against k, torus and ellipsoid, each noise level
-  const std::string dat_path = o.out + "/accuracy_ponca.dat";
+/// accuracy_ponca.dat: relative H RMSE against k, each surface and noise level.
+static void write_dat(const std::string& dat_path, const std::vector<std::unique_ptr<WB::Surface> >& surfaces, const Grid& g)
+{
   std::ofstream dat(dat_path);
   dat << "# surface noise k";
   for(int e = 0; e < NUM_ESTIMATORS; ++e) dat << " " << estimator_name[e];
   dat << "\n";
   for(const auto& S : surfaces)
-    for(double noise : noises)
-      for(unsigned int k : ks)
+    for(double noise : g.noises)
+      for(unsigned int k : g.ks)
       {
         dat << S->name() << " " << noise << " " << k;
-        for(const Result& r : results[S->name()][noise][k]) dat << " " << (r.present ? r.relH : -1.);
+        for(const Result& r : row_of(g, S->name(), noise, k)) dat << " " << (r.present ? r.relH : -1.);
         dat << "\n";
       }
   dat.close();
+}
+
+int main(int argc, char** argv)
+{
+  Options o;
+  if(!parse_command_line(argc, argv, o)) return 2;
+  if(!have_ponca)
+    std::cerr << "Ponca not found at configure time (see benchmark/Wavejets/CMakeLists.txt): the APSS and ASO "
+                 "columns are skipped.\n";
+
+  const std::vector<std::unique_ptr<WB::Surface> > surfaces = benchmark_surfaces(o.quick);
+  CGAL::Real_timer total;
+  total.start();
+  const Grid g = run_grid(o, surfaces, total);
+  total.stop();
+  const double pipeline_difference = one_call_pipeline_difference(o, surfaces);
+  const std::string speed = hermite_speed_table(o);
+  const Outlier_errors outl = outlier_experiment(o);
+
+  std::ostringstream md;
+  write_introduction(md, o, total.time(), pipeline_difference);
+  write_relative_H_tables(md, surfaces, g);
+  write_all_errors(md, o, surfaces, g);
+  write_weights_table(md, surfaces, g);
+  md << "\n## Outliers\n\nUnit sphere, " << o.points << " points, 5% outliers (moved uniformly in a ball of radius 2.5% of the "
+        "diagonal, not evaluated), K = 4, `neighbor_radius(0.2)`, no normal map (|H| against 1), all inliers evaluated.\n\n"
+     << outl.table;
+  md << "\n## Speed of the Hermite fit\n\n`wavejet_estimate_curvatures<Sequential_tag>`, torus, " << o.points
+     << " points, noise 0.25%, k = 50, best of 3; the Hermite fit with the neighbors' normals given as the normal map, "
+        "and the one-call pipeline (no normal map: normals estimated first, then the Hermite fit).\n\n"
+     << speed << "\n";
+
+  if(!o.quick) write_targets(md, surfaces, g, outl);
+  write_dat(o.out + "/accuracy_ponca.dat", surfaces, g);
   md << "Plot (`accuracy_ponca.png`, from `accuracy_ponca.dat` with `accuracy_ponca.gp`): relative H RMSE against k.\n\n"
         "![relative H RMSE against k](accuracy_ponca.png)\n";
   std::ofstream(o.out + "/accuracy_ponca.md") << md.str();

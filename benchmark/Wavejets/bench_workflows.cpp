@@ -138,49 +138,65 @@ static void wavejet_normals(Point_set& points, unsigned int k, std::size_t robus
     points, k, WP::order(2).robust_iterations(robust_iterations).use_neighbor_normals(hermite));
 }
 
-int main(int argc, char** argv)
+struct Options
 {
-  const std::string here = std::string(__FILE__).substr(0, std::string(__FILE__).find_last_of('/') + 1); // ends in '/'
-
+  std::string here = std::string(__FILE__).substr(0, std::string(__FILE__).find_last_of('/') + 1); // ends in '/'
   std::size_t n = 30000, samples = 30000;
   unsigned int k = 24;
   std::vector<std::string> meshes;
   std::string out = here + "workflows.md";
   bool write = true;
+  std::string command;
+};
+
+/// Reads the options; returns false when the program should stop at once with `exit_code`.
+static bool parse_command_line(int argc, char** argv, Options& o, int& exit_code)
+{
   std::ostringstream command;
   command << "bench_workflows";
   for(int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
     const bool has_value = i + 1 < argc;
-    if(a == "--points" && has_value) n = std::stoul(argv[++i]);
-    else if(a == "--k" && has_value) k = unsigned(std::stoul(argv[++i]));
-    else if(a == "--samples" && has_value) samples = std::stoul(argv[++i]);
-    else if(a == "--mesh" && has_value) meshes.push_back(argv[++i]);
-    else if(a == "--out" && has_value) out = argv[++i];
-    else if(a == "--no-write") write = false;
+    if(a == "--points" && has_value) o.n = std::stoul(argv[++i]);
+    else if(a == "--k" && has_value) o.k = unsigned(std::stoul(argv[++i]));
+    else if(a == "--samples" && has_value) o.samples = std::stoul(argv[++i]);
+    else if(a == "--mesh" && has_value) o.meshes.push_back(argv[++i]);
+    else if(a == "--out" && has_value) o.out = argv[++i];
+    else if(a == "--no-write") o.write = false;
     else
     {
       std::cerr << "usage: bench_workflows [--points N] [--k K] [--samples M] [--mesh file.off]... [--out file.md] [--no-write]\n";
-      return a == "--help" ? 0 : 1;
+      exit_code = a == "--help" ? 0 : 1;
+      return false;
     }
     command << " " << a;
     if(a != "--no-write") command << " " << argv[i];
   }
-  if(n < 1000 || k < 6 || samples < 1000)
+  if(o.n < 1000 || o.k < 6 || o.samples < 1000)
   {
     std::cerr << "need --points >= 1000, --k >= 6, --samples >= 1000\n";
-    return 1;
+    exit_code = 1;
+    return false;
   }
-  if(meshes.empty())
-    meshes = {here + "data/bunny00.off",
-              here + "data/fandisk.off"};
+  if(o.meshes.empty())
+    o.meshes = {o.here + "data/bunny00.off",
+                o.here + "data/fandisk.off"};
+  o.command = command.str();
+  return true;
+}
 
-  const std::vector<Condition> conditions = {
+static std::vector<Condition> scan_conditions()
+{
+  return {
     {"noise 0", 0., 0.}, {"noise 0.25%", 0.0025, 0.}, {"noise 0.5%", 0.005, 0.},
     {"noise 0.25% + 5% outliers", 0.0025, 0.05}};
-  // Every estimator writes unoriented normals with the same k, Sequential_tag (timed alone).
-  const std::vector<Estimator> estimators = {
+}
+
+// Every estimator writes unoriented normals with the same k, Sequential_tag (timed alone).
+static std::vector<Estimator> normal_estimators()
+{
+  return {
     {"pca_estimate_normals", [](Point_set& ps, unsigned int kk) {
        CGAL::pca_estimate_normals<CGAL::Sequential_tag>(ps, kk, ps.parameters()); }},
     {"jet_estimate_normals (degree 2)", [](Point_set& ps, unsigned int kk) {
@@ -189,163 +205,203 @@ int main(int argc, char** argv)
     {"wavejet_estimate_normals, robust_iterations(3)", [](Point_set& ps, unsigned int kk) { wavejet_normals(ps, kk, 3, false); }},
     {"wavejet_estimate_normals, use_neighbor_normals(true)", [](Point_set& ps, unsigned int kk) {
        wavejet_normals(ps, kk, 0, true); }}};
+}
 
-  CGAL::Real_timer total;
-  total.start();
-  std::vector<Result> results;
-  std::ostringstream setup;
-  for(const std::string& file : meshes)
+/// A true mesh and what the measures need from it (all references to objects of run_mesh).
+struct Ground_truth
+{
+  const std::string& name;
+  const Mesh& mesh;
+  const Tree& tree;
+  const std::vector<Point>& samples; // points on the mesh, for the distances from it
+  double diagonal, outward;
+};
+
+/// The scan of condition number `index`: the clean samples + Gaussian noise; a fraction of them moved off the
+/// surface by a uniform vector of a ball of radius 2.5% of the diagonal (the same points for every estimator).
+/// Returns the map that marks the outliers.
+static Point_set::Property_map<unsigned char> make_scan(Point_set& scan, const std::vector<Point>& clean,
+                                                        const Condition& c, unsigned int index, double diagonal)
+{
+  std::mt19937 engine(1000u + index);
+  std::normal_distribution<double> gauss(0., c.sigma * diagonal);
+  std::uniform_real_distribution<double> uniform(-1., 1.);
+  scan.add_normal_map();
+  Point_set::Property_map<unsigned char> is_outlier = scan.add_property_map<unsigned char>("outlier", 0).first;
+  const std::size_t stride = c.outlier_fraction > 0. ? std::size_t(1. / c.outlier_fraction + 0.5) : 0;
+  for(std::size_t i = 0; i < clean.size(); ++i)
   {
-    Mesh truth;
-    if(!CGAL::IO::read_polygon_mesh(file, truth) || truth.is_empty() || !CGAL::is_triangle_mesh(truth)
-       || !CGAL::is_closed(truth))
+    Vector d(0, 0, 0);
+    if(c.sigma > 0.) d = Vector(gauss(engine), gauss(engine), gauss(engine));
+    const Point_set::iterator it = scan.insert(clean[i] + d);
+    if(stride > 0 && i % stride == 0)
     {
-      std::cerr << "cannot read " << file << " as a closed triangle mesh\n";
-      return 1;
-    }
-    const std::string mesh_name = file.substr(file.find_last_of('/') + 1);
-    const CGAL::Bbox_3 box = PMP::bbox(truth);
-    const double diagonal = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin())
-                                      + CGAL::square(box.zmax() - box.zmin()));
-    const double outward = PMP::volume(truth) > 0 ? 1. : -1.; // faces oriented outward or inward
-    Tree truth_tree(faces(truth).first, faces(truth).second, truth);
-    truth_tree.accelerate_distance_queries();
-    const std::vector<Point> truth_samples = sample(truth, samples, 7);
-    const std::vector<Point> clean = sample(truth, n, 42);
-    setup << "- `" << mesh_name << "`: " << truth.number_of_vertices() << " vertices, " << truth.number_of_faces()
-          << " triangles, bounding-box diagonal " << fmt(diagonal, 4) << "; average spacing of the " << n
-          << " clean samples (6 neighbors): "
-          << fmt(CGAL::compute_average_spacing<CGAL::Sequential_tag>(clean, 6) / diagonal * 100., 3) << "% of the diagonal.\n";
-
-    for(const Condition& c : conditions)
-    {
-      // The scan: the clean samples + Gaussian noise; a fraction of them moved off the surface by a
-      // uniform vector of a ball of radius 2.5% of the diagonal (the same points for every estimator).
-      std::mt19937 engine(1000u + unsigned(&c - conditions.data()));
-      std::normal_distribution<double> gauss(0., c.sigma * diagonal);
-      std::uniform_real_distribution<double> uniform(-1., 1.);
-      Point_set scan;
-      scan.add_normal_map();
-      Point_set::Property_map<unsigned char> is_outlier = scan.add_property_map<unsigned char>("outlier", 0).first;
-      const std::size_t stride = c.outlier_fraction > 0. ? std::size_t(1. / c.outlier_fraction + 0.5) : 0;
-      for(std::size_t i = 0; i < clean.size(); ++i)
-      {
-        Vector d(0, 0, 0);
-        if(c.sigma > 0.) d = Vector(gauss(engine), gauss(engine), gauss(engine));
-        const Point_set::iterator it = scan.insert(clean[i] + d);
-        if(stride > 0 && i % stride == 0)
-        {
-          Vector b;
-          do b = Vector(uniform(engine), uniform(engine), uniform(engine)); while(b.squared_length() > 1.);
-          scan.point(*it) = scan.point(*it) + 0.025 * diagonal * b;
-          is_outlier[*it] = 1;
-        }
-      }
-
-      // The workflow's outlier removal (wavejet_reconstruction_workflow.cpp): average distance to
-      // 24 neighbors above twice its average over all points.
-      const std::size_t input = scan.size();
-      const double input_spacing = CGAL::compute_average_spacing<CGAL::Sequential_tag>(scan, 24);
-      scan.remove(CGAL::remove_outliers<CGAL::Sequential_tag>(
-                    scan, 24, scan.parameters().threshold_percent(100.).threshold_distance(2. * input_spacing)),
-                  scan.end());
-      scan.collect_garbage();
-      std::size_t outliers_left = 0;
-      for(Point_set::Index i : scan) outliers_left += is_outlier[i];
-      std::cout << mesh_name << ", " << c.name << ": " << input << " points, " << scan.size()
-                << " after remove_outliers (" << outliers_left << " outliers left)" << std::endl;
-
-      for(const Estimator& e : estimators)
-      {
-        Result r;
-        r.mesh = mesh_name; r.condition = c.name; r.estimator = e.name;
-        r.input = input; r.after_outlier_removal = scan.size();
-        Point_set points = scan;
-        CGAL::Real_timer timer;
-        timer.start();
-        e.run(points, k);
-        timer.stop();
-        r.normal_seconds = timer.time();
-        // No collect_garbage(): `points` keeps the indices of `scan`, so scan's maps read it.
-        points.remove(CGAL::mst_orient_normals(points, k, points.parameters()), points.end());
-        r.oriented = points.size();
-
-        // Normal error against the true (outward) normal of the closest triangle, outliers excluded.
-        double angle_sum = 0.;
-        std::size_t counted = 0, flipped = 0;
-        for(Point_set::Index i : points)
-        {
-          if(is_outlier[i]) continue;
-          const Vector t = outward * PMP::compute_face_normal(truth_tree.closest_point_and_primitive(points.point(i)).second, truth);
-          const Vector m = points.normal(i);
-          const double cosine = CGAL::to_double(t * m) / std::sqrt(CGAL::to_double(m.squared_length()));
-          const double angle = std::acos(std::clamp(std::abs(cosine), 0., 1.)) * 180. / CGAL_PI;
-          angle_sum += angle;
-          flipped += cosine < 0;
-          ++counted;
-        }
-        r.mean_angle = angle_sum / double(counted);
-        r.flipped_percent = 100. * double(flipped) / double(counted);
-
-        // Poisson reconstruction, as in the workflow (size parameter: average spacing).
-        Mesh reconstruction;
-        const double spacing = CGAL::compute_average_spacing<CGAL::Sequential_tag>(points, 6);
-        r.reconstructed = CGAL::poisson_surface_reconstruction_delaunay(
-                            points.begin(), points.end(), points.point_map(), points.normal_map(), reconstruction, spacing)
-                          && reconstruction.number_of_faces() > 0;
-        if(r.reconstructed)
-        {
-          r.vertices = reconstruction.number_of_vertices();
-          Tree tree(faces(reconstruction).first, faces(reconstruction).second, reconstruction);
-          tree.accelerate_distance_queries();
-          double max_to = 0., max_from = 0.;
-          summarize(distances(sample(reconstruction, samples, 11), truth_tree), r.to_true_mean, r.to_true_p95, max_to);
-          summarize(distances(truth_samples, tree), r.from_true_mean, r.from_true_p95, max_from);
-          for(double* v : {&r.to_true_mean, &r.to_true_p95, &r.from_true_mean, &r.from_true_p95}) *v *= 100. / diagonal;
-          r.hausdorff = std::max(max_to, max_from) * 100. / diagonal;
-        }
-        std::cout << "  " << e.name << ": normals " << fmt(r.normal_seconds) << " s, mean angle " << fmt(r.mean_angle, 2)
-                  << " deg, flipped " << fmt(r.flipped_percent, 2) << "%, reconstruction -> truth mean "
-                  << fmt(r.to_true_mean) << "% p95 " << fmt(r.to_true_p95) << "%, truth -> reconstruction p95 "
-                  << fmt(r.from_true_p95) << "% (" << fmt(total.time(), 0) << " s so far)" << std::endl;
-        results.push_back(r);
-      }
+      Vector b;
+      do b = Vector(uniform(engine), uniform(engine), uniform(engine)); while(b.squared_length() > 1.);
+      scan.point(*it) = scan.point(*it) + 0.025 * diagonal * b;
+      is_outlier[*it] = 1;
     }
   }
-  total.stop();
+  return is_outlier;
+}
 
+/// The workflow's outlier removal (wavejet_reconstruction_workflow.cpp): average distance to
+/// 24 neighbors above twice its average over all points.
+static void remove_scan_outliers(Point_set& scan)
+{
+  const double input_spacing = CGAL::compute_average_spacing<CGAL::Sequential_tag>(scan, 24);
+  scan.remove(CGAL::remove_outliers<CGAL::Sequential_tag>(
+                scan, 24, scan.parameters().threshold_percent(100.).threshold_distance(2. * input_spacing)),
+              scan.end());
+  scan.collect_garbage();
+}
+
+/// Normal error against the true (outward) normal of the closest triangle, outliers excluded.
+static void measure_normals(const Point_set& points, const Point_set::Property_map<unsigned char>& is_outlier,
+                            const Ground_truth& t, Result& r)
+{
+  double angle_sum = 0.;
+  std::size_t counted = 0, flipped = 0;
+  for(Point_set::Index i : points)
+  {
+    if(is_outlier[i]) continue;
+    const Vector tn = t.outward * PMP::compute_face_normal(t.tree.closest_point_and_primitive(points.point(i)).second, t.mesh);
+    const Vector m = points.normal(i);
+    const double cosine = CGAL::to_double(tn * m) / std::sqrt(CGAL::to_double(m.squared_length()));
+    const double angle = std::acos(std::clamp(std::abs(cosine), 0., 1.)) * 180. / CGAL_PI;
+    angle_sum += angle;
+    flipped += cosine < 0;
+    ++counted;
+  }
+  r.mean_angle = angle_sum / double(counted);
+  r.flipped_percent = 100. * double(flipped) / double(counted);
+}
+
+/// Poisson reconstruction, as in the workflow (size parameter: average spacing), and its distances to the truth.
+static void reconstruct_and_measure(const Point_set& points, const Ground_truth& t, std::size_t samples, Result& r)
+{
+  Mesh reconstruction;
+  const double spacing = CGAL::compute_average_spacing<CGAL::Sequential_tag>(points, 6);
+  r.reconstructed = CGAL::poisson_surface_reconstruction_delaunay(
+                      points.begin(), points.end(), points.point_map(), points.normal_map(), reconstruction, spacing)
+                    && reconstruction.number_of_faces() > 0;
+  if(r.reconstructed)
+  {
+    r.vertices = reconstruction.number_of_vertices();
+    Tree tree(faces(reconstruction).first, faces(reconstruction).second, reconstruction);
+    tree.accelerate_distance_queries();
+    double max_to = 0., max_from = 0.;
+    summarize(distances(sample(reconstruction, samples, 11), t.tree), r.to_true_mean, r.to_true_p95, max_to);
+    summarize(distances(t.samples, tree), r.from_true_mean, r.from_true_p95, max_from);
+    for(double* v : {&r.to_true_mean, &r.to_true_p95, &r.from_true_mean, &r.from_true_p95}) *v *= 100. / t.diagonal;
+    r.hausdorff = std::max(max_to, max_from) * 100. / t.diagonal;
+  }
+}
+
+/// One estimator in the workflow on `scan` (after outlier removal; `input` points before).
+static Result run_workflow(const Estimator& e, const Point_set& scan, const Point_set::Property_map<unsigned char>& is_outlier,
+                           std::size_t input, const Condition& c, const Ground_truth& t, const Options& o,
+                           const CGAL::Real_timer& total)
+{
+  Result r;
+  r.mesh = t.name; r.condition = c.name; r.estimator = e.name;
+  r.input = input; r.after_outlier_removal = scan.size();
+  Point_set points = scan;
+  CGAL::Real_timer timer;
+  timer.start();
+  e.run(points, o.k);
+  timer.stop();
+  r.normal_seconds = timer.time();
+  // No collect_garbage(): `points` keeps the indices of `scan`, so scan's maps read it.
+  points.remove(CGAL::mst_orient_normals(points, o.k, points.parameters()), points.end());
+  r.oriented = points.size();
+  measure_normals(points, is_outlier, t, r);
+  reconstruct_and_measure(points, t, o.samples, r);
+  std::cout << "  " << e.name << ": normals " << fmt(r.normal_seconds) << " s, mean angle " << fmt(r.mean_angle, 2)
+            << " deg, flipped " << fmt(r.flipped_percent, 2) << "%, reconstruction -> truth mean "
+            << fmt(r.to_true_mean) << "% p95 " << fmt(r.to_true_p95) << "%, truth -> reconstruction p95 "
+            << fmt(r.from_true_p95) << "% (" << fmt(total.time(), 0) << " s so far)" << std::endl;
+  return r;
+}
+
+/// The workflow with every estimator on every scan of one mesh; appends its line of the setup.
+static bool run_mesh(const std::string& file, const Options& o, std::vector<Result>& results, std::ostream& setup,
+                     const CGAL::Real_timer& total)
+{
+  Mesh truth;
+  if(!CGAL::IO::read_polygon_mesh(file, truth) || truth.is_empty() || !CGAL::is_triangle_mesh(truth)
+     || !CGAL::is_closed(truth))
+  {
+    std::cerr << "cannot read " << file << " as a closed triangle mesh\n";
+    return false;
+  }
+  const std::string mesh_name = file.substr(file.find_last_of('/') + 1);
+  const CGAL::Bbox_3 box = PMP::bbox(truth);
+  const double diagonal = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin())
+                                    + CGAL::square(box.zmax() - box.zmin()));
+  const double outward = PMP::volume(truth) > 0 ? 1. : -1.; // faces oriented outward or inward
+  Tree truth_tree(faces(truth).first, faces(truth).second, truth);
+  truth_tree.accelerate_distance_queries();
+  const std::vector<Point> truth_samples = sample(truth, o.samples, 7);
+  const std::vector<Point> clean = sample(truth, o.n, 42);
+  setup << "- `" << mesh_name << "`: " << truth.number_of_vertices() << " vertices, " << truth.number_of_faces()
+        << " triangles, bounding-box diagonal " << fmt(diagonal, 4) << "; average spacing of the " << o.n
+        << " clean samples (6 neighbors): "
+        << fmt(CGAL::compute_average_spacing<CGAL::Sequential_tag>(clean, 6) / diagonal * 100., 3) << "% of the diagonal.\n";
+  const Ground_truth t{mesh_name, truth, truth_tree, truth_samples, diagonal, outward};
+  const std::vector<Condition> conditions = scan_conditions();
+  for(const Condition& c : conditions)
+  {
+    Point_set scan;
+    const Point_set::Property_map<unsigned char> is_outlier =
+      make_scan(scan, clean, c, unsigned(&c - conditions.data()), diagonal);
+    const std::size_t input = scan.size();
+    remove_scan_outliers(scan);
+    std::size_t outliers_left = 0;
+    for(Point_set::Index i : scan) outliers_left += is_outlier[i];
+    std::cout << mesh_name << ", " << c.name << ": " << input << " points, " << scan.size()
+              << " after remove_outliers (" << outliers_left << " outliers left)" << std::endl;
+    for(const Estimator& e : normal_estimators()) results.push_back(run_workflow(e, scan, is_outlier, input, c, t, o, total));
+  }
+  return true;
+}
+
+/// The tables (markdown).
+static std::string workflows_report(const Options& o, const std::vector<Result>& results, const std::string& setup,
+                                    double total_seconds)
+{
   std::ostringstream md;
   const std::time_t now = std::time(nullptr);
   char date[64];
   std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
   md << "# Normal estimators in CGAL's reconstruction workflow\n\n"
-     << "Generated by `benchmark/Wavejets/bench_workflows.cpp` on " << date << " in " << fmt(total.time(), 0)
+     << "Generated by `benchmark/Wavejets/bench_workflows.cpp` on " << date << " in " << fmt(total_seconds, 0)
      << " s, " << std::thread::hardware_concurrency() << " hardware threads (the machine was shared with other builds"
      << ": the times are indicative). Command (from the repository root):\n\n"
      << "    cmake -S . -B build/bench -DCMAKE_BUILD_TYPE=Release && cmake --build build/bench --target bench_workflows -j1\n"
-     << "    build/bench/benchmark/Wavejets/" << command.str() << "\n\n"
+     << "    build/bench/benchmark/Wavejets/" << o.command << "\n\n"
      << "## Setup\n\n"
      << "The workflow of `examples/Wavejets/wavejet_reconstruction_workflow.cpp` (CGAL's reconstruction tutorial) with "
      << "each normal estimator in turn, everything else identical:\n\n"
-     << "1. A scan: " << n << " points sampled uniformly on a closed mesh (`CGAL::Random_points_in_triangle_mesh_3`, fixed "
+     << "1. A scan: " << o.n << " points sampled uniformly on a closed mesh (`CGAL::Random_points_in_triangle_mesh_3`, fixed "
      << "seed), plus Gaussian noise of standard deviation sigma per coordinate (sigma in % of the bounding-box diagonal); "
      << "with outliers, every 20th point (5%) is moved by a uniform random vector of a ball of radius 2.5% of the diagonal.\n"
      << "2. `remove_outliers` (24 neighbors, `threshold_percent(100).threshold_distance(2 x average spacing to 24 neighbors)`). No grid "
      << "simplification (the samples are uniform already).\n"
-     << "3. Normals with k = " << k << " neighbors, `Sequential_tag` (this step alone is timed): `pca_estimate_normals`; "
+     << "3. Normals with k = " << o.k << " neighbors, `Sequential_tag` (this step alone is timed): `pca_estimate_normals`; "
      << "`jet_estimate_normals` (degree 2, its default); `wavejet_estimate_normals` (order 2, its default); "
      << "`wavejet_estimate_normals` with `robust_iterations(3)`; `wavejet_estimate_normals` with `use_neighbor_normals(true)` "
      << "(Hermite fit: heights and the neighbors' normals, which it first estimates itself with its plain fit).\n"
-     << "4. `mst_orient_normals` (k = " << k << "); points it cannot orient are removed.\n"
+     << "4. `mst_orient_normals` (k = " << o.k << "); points it cannot orient are removed.\n"
      << "5. `poisson_surface_reconstruction_delaunay` with the average spacing (6 neighbors) as size parameter.\n"
-     << "6. Distances, in % of the bounding-box diagonal, through AABB trees: from " << samples << " points sampled on the "
-     << "reconstruction to the true mesh (mean, 95th percentile) and from " << samples << " points sampled on the true mesh "
+     << "6. Distances, in % of the bounding-box diagonal, through AABB trees: from " << o.samples << " points sampled on the "
+     << "reconstruction to the true mesh (mean, 95th percentile) and from " << o.samples << " points sampled on the true mesh "
      << "to the reconstruction (mean, 95th percentile; large where the reconstruction misses or adds a part); "
      << "Hausdorff = the largest of all these distances (a sampled approximation of the symmetric Hausdorff distance).\n"
      << "7. Normal error after orientation, outliers excluded: mean angle to the true normal of the closest triangle "
      << "(unoriented, degrees), and the % of normals pointing inward (orientation failures).\n\n"
-     << setup.str() << "\n";
-  for(const std::string& file : meshes)
+     << setup << "\n";
+  for(const std::string& file : o.meshes)
   {
     const std::string mesh_name = file.substr(file.find_last_of('/') + 1);
     md << "## `" << mesh_name << "`\n\n"
@@ -364,13 +420,30 @@ int main(int argc, char** argv)
     }
     md << "\n";
   }
-  std::cout << "\n" << md.str();
-  if(write)
+  return md.str();
+}
+
+int main(int argc, char** argv)
+{
+  Options o;
+  int exit_code = 0;
+  if(!parse_command_line(argc, argv, o, exit_code)) return exit_code;
+  CGAL::Real_timer total;
+  total.start();
+  std::vector<Result> results;
+  std::ostringstream setup;
+  for(const std::string& file : o.meshes)
+    if(!run_mesh(file, o, results, setup, total)) return 1;
+  total.stop();
+
+  const std::string md = workflows_report(o, results, setup.str(), total.time());
+  std::cout << "\n" << md;
+  if(o.write)
   {
-    std::ofstream f(out);
-    f << md.str();
-    if(!f) { std::cerr << "cannot write " << out << "\n"; return 1; }
-    std::cout << "written to " << out << "\n";
+    std::ofstream f(o.out);
+    f << md;
+    if(!f) { std::cerr << "cannot write " << o.out << "\n"; return 1; }
+    std::cout << "written to " << o.out << "\n";
   }
   return 0;
 }
