@@ -121,7 +121,10 @@ static std::vector<double> distances(const std::vector<Point>& from, const Tree&
 
 static std::vector<Point> sample(const Mesh& mesh, std::size_t n, unsigned int seed)
 {
+  // The generator draws the triangle with `random` but the point inside it with
+  // CGAL::get_default_random() (CGAL 5.5.1): seed both, or the sample changes from run to run.
   CGAL::Random random(seed);
+  CGAL::get_default_random() = CGAL::Random(seed + 1);
   std::vector<Point> points;
   points.reserve(n);
   CGAL::Random_points_in_triangle_mesh_3<Mesh> generator(mesh, random);
