@@ -102,15 +102,16 @@ const Command_info commands[] = {
 
 struct Flag_info { const char* name; const char* arg; unsigned commands; const char* help; };
 const Flag_info flags[] = {
-  {"--k", "N", FITS, "neighbors per fit (k nearest: Rf per point follows the sampling); with --radius: at most N nearest within the radius (0: no limit)"},
+  {"--k", "N", FITS, "neighbors per fit (k nearest: Rf per point follows the sampling; default 40, 1.5 x the coefficients above order 6); with --radius: at most N nearest within the radius (0: no limit)"},
   {"--radius", "R", FITS, "neighborhood radius in model units (points with too few neighbors inside are reported, not fitted)"},
-  {"--radius-factor", "F", FITS, "without --k and --radius: radius = F x average spacing to the 6 nearest neighbors (default 4)"},
+  {"--radius-factor", "F", FITS, "instead of --k and --radius: one radius of F x the average spacing to the 6 nearest neighbors (e.g. 4)"},
   {"--order", "K", FITS, "Wavejet order (default 2 for normals and curvature, 4 for the enhance commands)"},
   {"--gain", "G|RE,IM", POSITIONS | NORMAL_FILTER, "filter gain (default 2); enhance-normals takes a complex gain, e.g. 0,2 for 2i (twist)"},
   {"--evaluation-radius", "S", POSITIONS | NORMAL_FILTER, "radius s of the enclosed-area coefficients a_n(s), model units (default: the fit radius Rf)"},
   {"--max-displacement", "D|none", POSITIONS, "clamp each point's motion to D model units (default Rf/2 per point; none: no clamp)"},
   {"--along-input-normals", "", POSITIONS, "move each point along its input normal instead of its Wavejet normal (for noisy inputs: first enhance-normals --gain 0, then this on its output)"},
-  {"--consistent-normals", "", POSITIONS | NORMAL_FILTER, "leave out the neighbors whose normal points more than 90 degrees away from the point's (the other side of a thin part, e.g. ears)"},
+  {"--consistent-normals", "", POSITIONS | NORMAL_FILTER, "leave out the neighbors whose normal points more than 90 degrees away from the point's (the other side of a thin part, e.g. ears); the default for a mesh"},
+  {"--all-neighbors", "", POSITIONS | NORMAL_FILTER, "keep every neighbor, whatever its normal (the default for a point set)"},
   {"--threads", "N", FITS | RENDER, "worker threads (default: all cores; 1: sequential, same results)"},
   {"--ascii", "", FITS, "write ASCII PLY (default: binary little-endian PLY, doubles)"},
   {"--width", "W", RENDER, "image width in pixels, all panels together (default 800 per panel)"},
@@ -194,8 +195,9 @@ void print_command_help(std::ostream& os, const Command_info& c)
   os << "\nFlags:\n";
   print_flags(os, c.bit);
   if(c.bit & FITS)
-    os << "\nNeighborhoods: --k alone: k nearest neighbors (for non-uniform samplings: Rf follows the density);\n"
-          "--radius (with or without --k): a fixed radius; neither: a radius of --radius-factor x the average spacing.\n";
+    os << "\nNeighborhoods: by default the 40 nearest neighbors (1.5 x the coefficients above order 6): Rf\n"
+          "follows the density, so non-uniform samplings are fitted everywhere; --k N: N nearest; --radius\n"
+          "(with or without --k): a fixed radius; --radius-factor F: a radius of F x the average spacing.\n";
 }
 
 // ------------------------------------------------------------------------------------------------
@@ -206,7 +208,7 @@ struct Options
   std::vector<std::string> files;
   bool has_k = false;
   unsigned int k = 0;
-  double radius = 0., radius_factor = 4.;
+  double radius = 0., radius_factor = 0.;  // radius_factor 0: not given
   std::size_t order = 0;                 // 0: the command's default
   bool has_gain = false;
   std::complex<double> gain = 2.;
@@ -214,7 +216,8 @@ struct Options
   bool has_clamp = false;
   double max_displacement = 0.;          // infinity: no clamp
   int threads = 0;
-  bool ascii = false, quiet = false, compare = false, along_input_normals = false, consistent_normals = false;
+  bool ascii = false, quiet = false, compare = false, along_input_normals = false;
+  std::optional<bool> consistent_normals;  // not given: on for a mesh (normals from its faces), off for a point set
   int width = 0, height = 800;
   wavejets_demo::Vec3 view = {{0., 0., 1.}}, up = {{0., 1., 0.}};
   double splat = 1.2;
@@ -335,6 +338,7 @@ Options parse_command_line(int argc, char** argv)
     else if(a == "--ascii") o.ascii = true;
     else if(a == "--along-input-normals") o.along_input_normals = true;
     else if(a == "--consistent-normals") o.consistent_normals = true;
+    else if(a == "--all-neighbors") o.consistent_normals = false;
     else if(a == "--quiet") o.quiet = true;
     else if(a == "--width") o.width = int(parse_integer(a, value, 8, 16384));
     else if(a == "--height") o.height = int(parse_integer(a, value, 8, 16384));
@@ -355,6 +359,7 @@ Options parse_command_line(int argc, char** argv)
   if(bit == RENDER && out_ext != "png") throw Usage_error("the output of render must be a .png file: " + o.files.back());
   if(bit != RENDER && out_ext != "ply" && out_ext != "off" && out_ext != "obj")
     throw Usage_error("the output must be a .ply file (or .off / .obj for a mesh input): " + o.files.back());
+  if(o.radius > 0 && o.radius_factor > 0) throw Usage_error("give --radius or --radius-factor, not both");
   if(o.width == 0) o.width = 800 * int(o.files.size() - 1);   // 800 per panel
   return o;
 }
@@ -555,18 +560,24 @@ struct Neighborhood
   std::string description;
 };
 
-Neighborhood choose_neighborhood(const Options& o, const Point_set& points, const std::string& path)
+// The default neighborhood: the 40 nearest neighbors, or 1.5 x the coefficients of the order when that
+// is more (order 7 and above), so that every point is fitted at full order. k nearest (not a radius
+// from the average spacing) because Rf then follows the sampling density: the sparse parts of a
+// non-uniform mesh are fitted too (measured in the user manual, section "Choosing the settings").
+unsigned int default_k(std::size_t order)
+{
+  const std::size_t coefficients = (order + 1) * (order + 2) / 2;  // the Wavejet basis of order K
+  return unsigned(std::max<std::size_t>(40, 3 * coefficients / 2));
+}
+
+Neighborhood choose_neighborhood(const Options& o, std::size_t order, const Point_set& points, const std::string& path)
 {
   Neighborhood n;
   if(o.radius > 0) {
     n.radius = o.radius;
     n.k = o.has_k ? o.k : 0;
     n.description = "radius " + format(n.radius) + (n.k ? ", at most " + std::to_string(n.k) + " neighbors" : "");
-  } else if(o.has_k) {
-    if(o.k < 2) throw Usage_error("--k must be >= 2 without --radius");
-    n.k = o.k;
-    n.description = std::to_string(n.k) + " nearest neighbors";
-  } else {
+  } else if(o.radius_factor > 0) {
     if(points.size() < 3)
       throw File_error(path + ": " + std::to_string(points.size()) + " points: too few to choose a neighborhood radius "
                        "from the average spacing (give --k or --radius)");
@@ -574,7 +585,13 @@ Neighborhood choose_neighborhood(const Options& o, const Point_set& points, cons
     if(!(spacing > 0)) throw File_error(path + ": every point coincides with its nearest neighbors: no neighborhood radius can be "
                                        "chosen from the average spacing (give --k or --radius)");
     n.radius = o.radius_factor * spacing;
-    n.description = "radius " + format(n.radius) + " (" + format(o.radius_factor) + " x average spacing " + format(spacing) + ")";
+    n.k = o.has_k ? o.k : 0;
+    n.description = "radius " + format(n.radius) + " (" + format(o.radius_factor) + " x average spacing " + format(spacing) + ")" +
+                    (n.k ? ", at most " + std::to_string(n.k) + " neighbors" : "");
+  } else {
+    if(o.has_k && o.k < 2) throw Usage_error("--k must be >= 2 without --radius");
+    n.k = o.has_k ? o.k : default_k(order);
+    n.description = std::to_string(n.k) + " nearest neighbors" + (o.has_k ? "" : " (default)");
   }
   return n;
 }
@@ -805,14 +822,17 @@ int run_fit_command_on_input(const Options& o, Progress& progress)
   Point_set& points = in.points;
   if(!in.is_mesh() && output_format(out_path) != Output_format::PLY)
     throw Usage_error(in_path + " is a point set (no faces): write it as .ply, not " + out_path);
-  const Neighborhood n = choose_neighborhood(o, points, in_path);
   const unsigned bit = o.command->bit;
   const std::size_t order = o.order ? o.order : CGAL::Wavejets::function_defaults(library_function(bit)).order;
+  const Neighborhood n = choose_neighborhood(o, order, points, in_path);
   Run_log log;
   // A mesh without normals: its faces give oriented vertex normals (no estimation, no MST).
   if(in.is_mesh() && !in.had_normals && set_face_normals(points, in.faces, nullptr))
     log.lines.push_back("The input has no normals: used the area-weighted normals of its faces.");
   const bool have_normals = points.has_normal_map();
+  // A mesh's normals come from its oriented faces (or its file): neighbors on the other side of a
+  // thin part (ears, fins, sheets) are left out by default; a point set's normals may be unoriented.
+  const bool consistent_normals = o.consistent_normals.value_or(in.is_mesh());
 
   drop_property(points, "fitted");
   Point_set::Property_map<unsigned char> fitted = points.add_property_map<unsigned char>("fitted", 0).first;
@@ -869,10 +889,10 @@ int run_fit_command_on_input(const Options& o, Progress& progress)
       };
       const CGAL::Wavejets::Processing_report r = o.has_clamp
         ? enhance(WP::maximum_displacement(o.max_displacement).order(order).evaluation_radius(o.evaluation_radius)
-                    .move_along_input_normals(o.along_input_normals).restrict_to_consistent_normals(o.consistent_normals)
+                    .move_along_input_normals(o.along_input_normals).restrict_to_consistent_normals(consistent_normals)
                     .write_normals(true).fitted_map(fitted_map))
         : enhance(WP::order(order).evaluation_radius(o.evaluation_radius).move_along_input_normals(o.along_input_normals)
-                    .restrict_to_consistent_normals(o.consistent_normals).write_normals(true).fitted_map(fitted_map));
+                    .restrict_to_consistent_normals(consistent_normals).write_normals(true).fitted_map(fitted_map));
       progress.done();
       std::string normals_of_result;
       if(in.is_mesh()) {
@@ -894,18 +914,18 @@ int run_fit_command_on_input(const Options& o, Progress& progress)
              (o.evaluation_radius > 0 ? format(o.evaluation_radius) : std::string("Rf")) + ", clamp " +
              (!o.has_clamp ? std::string("Rf/2") : std::isinf(o.max_displacement) ? std::string("none") : format(o.max_displacement)) +
              (o.along_input_normals ? std::string(", along the input normals") : std::string()) +
-             (o.consistent_normals ? std::string(", neighbors with consistent normals") : std::string()) +
+             (consistent_normals ? std::string(", neighbors with consistent normals") : std::string()) +
              "): " + report_text(r) + "; " + normals_of_result + ".";
     } else {
       const CGAL::Wavejets::Processing_report r = CGAL::wavejet_enhance_normals<Concurrency_tag>(
         points, n.k, o.gain,
-        fit_parameters(WP::order(order).evaluation_radius(o.evaluation_radius).restrict_to_consistent_normals(o.consistent_normals)
+        fit_parameters(WP::order(order).evaluation_radius(o.evaluation_radius).restrict_to_consistent_normals(consistent_normals)
                          .fitted_map(fitted_map), n, points, progress.stage("enhancing normals")));
       progress.done();
       const std::string g = o.gain.imag() == 0 ? format(o.gain.real()) : format(o.gain.real()) + (o.gain.imag() < 0 ? "" : "+") + format(o.gain.imag()) + "i";
       what = "Normal enhancement (order " + std::to_string(order) + ", gain " + g + ", evaluation radius " +
              (o.evaluation_radius > 0 ? format(o.evaluation_radius) : std::string("Rf")) +
-             (o.consistent_normals ? std::string(", neighbors with consistent normals") : std::string()) +
+             (consistent_normals ? std::string(", neighbors with consistent normals") : std::string()) +
              "): " + report_text(r) + ".";
     }
     log.fit_seconds += seconds_since(t);

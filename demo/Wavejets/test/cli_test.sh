@@ -152,10 +152,10 @@ case $case_name in
     grep -q "all 5 points coincide" <("$wj" normals same.xyz out.ply 2>&1) || fail "the error does not say that the points coincide"
     grep -q "single point" <("$wj" normals single.pwn out.ply 2>&1) || fail "the error does not say single point"
     # Two groups of 7 coincident points: not all equal, but every point's 6 nearest neighbors
-    # coincide with it, so the default radius (4 x average spacing) cannot be chosen.
+    # coincide with it, so a radius of 4 x the average spacing cannot be chosen.
     for i in 1 2 3 4 5 6 7; do echo "0 0 0"; echo "1 1 1"; done > clusters.xyz
-    expect_error clusters.xyz out.ply -- normals clusters.xyz out.ply
-    grep -q "coincides with its nearest neighbors" <("$wj" normals clusters.xyz out.ply 2>&1) || fail "clusters: wrong message"
+    expect_error clusters.xyz out.ply -- normals clusters.xyz out.ply --radius-factor 4
+    grep -q "coincides with its nearest neighbors" <("$wj" normals clusters.xyz out.ply --radius-factor 4 2>&1) || fail "clusters: wrong message"
     # Two points: too few to estimate normals for shading.
     printf '0 0 0\n1 0 0\n' > two.xyz
     expect_error two.xyz out.png -- render two.xyz out.png
@@ -184,7 +184,8 @@ case $case_name in
     for args in "normals" "nosuchcommand a b" "normals $kitten out.ply --k" "normals $kitten out.ply --k abc" \
                 "normals $kitten out.ply --order 0" "normals $kitten out.xyz" "enhance-positions $kitten out.ply --gain 0,2" \
                 "normals $kitten out.ply --gain 2" "enhance-positions $kitten out.ply --max-displacement -1" \
-                "normals $kitten out.ply --bogus" "render $kitten out.ply" "normals $kitten out.ply --k 1"; do
+                "normals $kitten out.ply --bogus" "render $kitten out.ply" "normals $kitten out.ply --k 1" \
+                "normals $kitten out.ply --radius 0.1 --radius-factor 4"; do
       # shellcheck disable=SC2086
       "$wj" $args > /dev/null 2> stderr.txt; status=$?
       echo "+ wavejets $args -> exit $status: $(cat stderr.txt)"
@@ -292,8 +293,38 @@ case $case_name in
     # changes the result on the anchor (which has thin parts).
     expect_ok "$mesh" m_cons.ply inf "fitted" -- enhance-positions "$mesh" m_cons.ply --consistent-normals | tee summary.txt
     grep -q "neighbors with consistent normals" summary.txt || fail "the summary does not say consistent normals"
-    expect_ok "$mesh" m_all.ply inf "fitted" -- enhance-positions "$mesh" m_all.ply --quiet
+    expect_ok "$mesh" m_all.ply inf "fitted" -- enhance-positions "$mesh" m_all.ply --all-neighbors | tee summary.txt
+    grep -q "neighbors with consistent normals" summary.txt && fail "--all-neighbors: the summary says consistent normals"
     "$check" same m_cons.ply m_all.ply > /dev/null && fail "--consistent-normals changes nothing on the anchor"
+    # The default for a mesh (normals from its oriented faces) is --consistent-normals; for a point
+    # set (normals possibly unoriented), --all-neighbors.
+    expect_ok "$mesh" m_default.ply inf "fitted" -- enhance-positions "$mesh" m_default.ply --quiet
+    "$check" same m_cons.ply m_default.ply || fail "a mesh's default is not --consistent-normals"
+    expect_ok "$kitten" k_default.ply inf "fitted" -- enhance-normals "$kitten" k_default.ply --quiet
+    expect_ok "$kitten" k_all.ply inf "fitted" -- enhance-normals "$kitten" k_all.ply --all-neighbors --quiet
+    "$check" same k_all.ply k_default.ply || fail "a point set's default is not --all-neighbors"
+    ;;
+  default_neighborhood)
+    # A non-uniform sampling (a bumpy square, 10x denser in one half, as scans and CAD tessellations
+    # are): the default neighborhood (the 40 nearest) fits every point at full order, where one radius
+    # from the average spacing (dominated by the dense half) leaves the sparse half unfitted.
+    awk 'BEGIN { for(i = 0; i <= 100; ++i) for(j = 0; j <= 50; ++j) { x = i / 100; y = j / 100; print x, y, 0.02 * sin(6 * x) * cos(5 * y) }
+                 for(i = 0; i <= 20; ++i) for(j = 11; j <= 20; ++j) { x = i / 20; y = j / 20; print x, y, 0.02 * sin(6 * x) * cos(5 * y) } }' > nonuniform.xyz
+    for c in normals curvature enhance-positions enhance-normals; do
+      expect_ok nonuniform.xyz d.ply inf "fitted" -- "$c" nonuniform.xyz d.ply | tee summary.txt
+      grep -q "neighborhoods: 40 nearest neighbors (default)" summary.txt || fail "$c: the summary does not give the default neighborhood"
+      # The normals estimated first (every command: the input has none) and the command's own fit.
+      grep -q "estimated them (order 2; 0 not fitted)" summary.txt || fail "$c: normals left unfitted by the default neighborhood"
+      if [ "$c" != normals ]; then
+        grep -q ": 5361 points fitted, 0 not fitted (left unchanged), 0 at reduced order" summary.txt ||
+          fail "$c: points unfitted or at reduced order with the default neighborhood"
+      fi
+      expect_ok nonuniform.xyz r.ply inf "fitted" -- "$c" nonuniform.xyz r.ply --radius-factor 4 | tee summary.txt
+      grep -q "estimated them (order 2; 0 not fitted)" summary.txt &&
+        fail "$c: --radius-factor 4 fits the sparse half too (the checks above cannot fail)"
+    done
+    # Orders above 6 take 1.5 x their coefficients (order 8: 45 coefficients, 67 neighbors).
+    run curvature nonuniform.xyz o8.ply --order 8 | grep -q "67 nearest neighbors (default)" || fail "order 8: not 67 neighbors by default"
     ;;
   render_mesh)
     "$check" renderer || fail "renderer self-checks"
