@@ -67,8 +67,8 @@ struct Driver_settings
   double neighbor_radius = 0.;
   std::size_t order = 2;
   Fitting_options fitting;                 // its neighborhood_radius is neighbor_radius
-  bool read_input_normals = false;         // copy the input normals: the range has them and a setting uses them
-  bool orient_with_input_normals = false;  // the input normals orient (or seed) the frames
+  bool read_input_normals = false;         // the range has normals and a setting uses them: they are copied,
+                                           // and they orient (or seed) the frames
   bool restrict_to_consistent_normals = false;
   bool use_neighbor_normals = false;       // Hermite fit (normals: the input's, or estimated first)
   double evaluation_radius = 0.;           // s of a_n(s), world units; 0: Rf of each point
@@ -191,7 +191,6 @@ Driver_settings read_settings(PointRange& points, unsigned int k, const NP& np, 
   const bool asked = choose_parameter(get_parameter(np, wnp::orient_with_input_normals), false) ||
                      s.restrict_to_consistent_normals || s.fitting.normal_use == Normal_use::SEED_FRAME;
   s.read_input_normals = has_normals && (d.orients_with_input_normals || asked);
-  s.orient_with_input_normals = s.read_input_normals;
 
   if(filter)
   {
@@ -383,7 +382,7 @@ Driver_run fit_each_point(const Input& input, const Driver_settings& settings, c
 
       const Eigen::Vector3d* hint = nullptr;
       Eigen::Vector3d normal;
-      if(settings.orient_with_input_normals)
+      if(settings.read_input_normals) // the input normals orient the frame
       {
         normal = input.normals[i];
         if(normal.allFinite() && normal.squaredNorm() > 0) hint = &normal; // else: unoriented
