@@ -5,7 +5,10 @@
 #   1. g++     + CGAL 5.5 (Debian)  Release, benchmarks built too
 #   2. clang++ + CGAL 6.1.1         Release, benchmarks built too; its results of every public
 #      function are compared with leg 1's to 1e-12 relative (test_public_api_results)
-#   3. g++     + CGAL 5.5 (Debian)  AddressSanitizer + UndefinedBehaviorSanitizer, Debug at -O1
+#   3. clang++ + CGAL 5.5 (Debian)  AddressSanitizer + UndefinedBehaviorSanitizer, Debug at -O1 (clang++
+#      compiles these CGAL-heavy sanitized translation units about 3x faster than g++: 124 s against
+#      421 s for test_point_set_functions.cpp); without the two compile-only tests of the headers and
+#      the installation, which legs 1 and 2 run
 # Leg 2 needs the unmodified CGAL 6.1.1 release: an unpacked folder named by WAVEJETS_CGAL6_DIR, or
 # the tarball named by WAVEJETS_CGAL6_TARBALL, or ../shared/deps/CGAL-6.1.1.tar.xz beside the
 # clone (unpacked into build/deps). Without it, leg 2 is skipped with a banner, except under CI=true
@@ -17,7 +20,9 @@ start=$(date +%s)
 bash scripts/install_dependencies.sh
 summary=""
 
-# run_leg NAME BUILD_DIR [cmake arguments...]: configure, build with 2 jobs, run CTest.
+# run_leg NAME BUILD_DIR [cmake arguments...]: configure, build with 2 jobs, run CTest (without the
+# tests matching $ctest_exclude, when set).
+ctest_exclude=""
 run_leg() {
   local name="$1" build="$2"
   shift 2
@@ -27,7 +32,7 @@ run_leg() {
   echo "=================== $name ==================="
   cmake -S . -B "$build" -DBUILD_TESTING=ON -DWAVEJETS_REQUIRE_TBB=ON "$@"
   cmake --build "$build" -j2
-  (cd "$build" && ctest --output-on-failure)
+  (cd "$build" && ctest --output-on-failure ${ctest_exclude:+-E "$ctest_exclude"})
   summary="$summary$(printf '%-55s %4d s' "$name" $(($(date +%s) - leg_start)))"$'\n'
 }
 
@@ -75,12 +80,13 @@ if [ "${WAVEJETS_SKIP_SANITIZERS:-0}" != 1 ]; then
   # fits instead of 1e6 under sanitizers.
   export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1
   export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:suppressions=$root/scripts/ubsan_suppressions.txt"
-  run_leg "3. g++ + CGAL 5.5, ASan + UBSan (Debug -O1)" "${WAVEJETS_ASAN_BUILD_DIR:-build/asan}" \
-    -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_COMPILER=g++ -DWAVEJETS_TESTS_ONLY=OFF -DWAVEJETS_BUILD_BENCHMARKS=OFF \
+  ctest_exclude="^(wavejets_headers_self_contained|wavejets_install_and_consume)$"
+  run_leg "3. clang++ + CGAL 5.5, ASan + UBSan (Debug -O1)" "${WAVEJETS_ASAN_BUILD_DIR:-build/asan}" \
+    -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_COMPILER=clang++ -DWAVEJETS_TESTS_ONLY=OFF -DWAVEJETS_BUILD_BENCHMARKS=OFF \
     -DCMAKE_DISABLE_FIND_PACKAGE_Doxygen=ON \
     -DCMAKE_CXX_FLAGS="-fsanitize=address,undefined -fno-omit-frame-pointer -fsanitize-recover=undefined -O1"
 else
-  summary="${summary}3. g++ + CGAL 5.5, ASan + UBSan                         SKIPPED (WAVEJETS_SKIP_SANITIZERS=1)"$'\n'
+  summary="${summary}3. clang++ + CGAL 5.5, ASan + UBSan                     SKIPPED (WAVEJETS_SKIP_SANITIZERS=1)"$'\n'
 fi
 
 echo
