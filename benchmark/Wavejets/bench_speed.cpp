@@ -316,7 +316,7 @@ struct Options
 static void usage()
 {
   std::cout <<
-    "bench_speed [N] [--n N] [--mode speed|scaling|all] [--cgal-subset M] [--scaling-max-n N]\n"
+    "bench_speed [N] [--n N] [--mode speed|scaling|all|solver] [--cgal-subset M] [--scaling-max-n N]\n"
     "            [--mesh file.off] [--out results.md] [--no-write] [--seed S]\n"
     "  speed   : the comparison table at N points (default 100000); CGAL degree 6/k 96 runs on a\n"
     "            strided subset of M points (default 20000, 0 = all), compared in us/point\n"
@@ -452,8 +452,8 @@ static std::string qr_comparison_row(const Points& points, std::size_t order, un
   const std::size_t m = (std::min<std::size_t>)(points.size(), 20000);
   const Qr_systems S = wavejet_systems(points, m, order, k);
   const std::size_t size = S.P * (S.cols + 1);
-  std::vector<double, WI::Aligned_allocator<double> > work(size), v(2 * S.P);
-  std::vector<double> c(S.cols), mine(m * S.cols), eigen(m * S.cols);
+  std::vector<double, WI::Aligned_allocator<double> > work(size), v(WI::least_squares_scratch_size(S.rows, S.cols));
+  std::vector<double> c(S.cols), mine(m * S.cols), eigen(m * S.cols), qr(m * S.cols);
   auto time_kernel = [&](bool (*kernel)(double*, std::size_t, std::size_t, double*, double*)) {
     CGAL::Real_timer t;
     t.start();
@@ -466,16 +466,37 @@ static std::string qr_comparison_row(const Points& points, std::size_t order, un
     return t.time() * 1e6 / double(m);
   };
   const double us_baseline = time_kernel(&WI::householder_kernel);
+  // The semi-normal solver, and how many systems it left to the QR (its guards).
+  std::size_t fallbacks = 0;
+  const double us_semi_normal = time_kernel(&WI::least_squares);
+  for(std::size_t q = 0; q < m; ++q)
+  {
+    std::copy(S.A.begin() + q * size, S.A.begin() + (q + 1) * size, work.begin());
+    fallbacks += !WI::semi_normal_kernel(work.data(), S.rows, S.cols, v.data(), c.data());
+  }
+  std::vector<double> semi_normal = mine;
   const double us_dispatch = time_kernel(&WI::householder_least_squares);
-  Eigen::HouseholderQR<Eigen::MatrixXd> qr(S.rows, S.cols);
+  qr = mine;
+  double worst_semi_normal = 0.;
+  for(std::size_t q = 0; q < m; ++q)
+  {
+    double dn = 0., n = 0.;
+    for(std::size_t j = 0; j < S.cols; ++j)
+    {
+      dn = (std::max)(dn, std::abs(semi_normal[q * S.cols + j] - qr[q * S.cols + j]));
+      n = (std::max)(n, std::abs(qr[q * S.cols + j]));
+    }
+    worst_semi_normal = (std::max)(worst_semi_normal, n > 0 ? dn / n : dn);
+  }
+  Eigen::HouseholderQR<Eigen::MatrixXd> qr_eigen(S.rows, S.cols);
   CGAL::Real_timer t;
   t.start();
   for(std::size_t q = 0; q < m; ++q)
   {
     const double* A = S.A.data() + q * size;
-    qr.compute(Eigen::Map<const Eigen::MatrixXd, 0, Eigen::OuterStride<> >(A, S.rows, S.cols, Eigen::OuterStride<>(S.P)));
+    qr_eigen.compute(Eigen::Map<const Eigen::MatrixXd, 0, Eigen::OuterStride<> >(A, S.rows, S.cols, Eigen::OuterStride<>(S.P)));
     Eigen::Map<Eigen::VectorXd>(eigen.data() + q * S.cols, S.cols) =
-      qr.solve(Eigen::Map<const Eigen::VectorXd>(A + S.cols * S.P, S.rows));
+      qr_eigen.solve(Eigen::Map<const Eigen::VectorXd>(A + S.cols * S.P, S.rows));
   }
   t.stop();
   const double us_eigen = t.time() * 1e6 / double(m);
@@ -494,15 +515,19 @@ static std::string qr_comparison_row(const Points& points, std::size_t order, un
   s << "| " << order << " | " << k << " | " << S.rows << " x " << S.cols << " | " << m << " | "
     << fmt(us_dispatch, 2) << " | " << fmt(us_baseline, 2) << " | " << fmt(us_eigen, 2) << " | "
     << fmt(us_eigen / us_dispatch, 1) << "x | " << fmt(us_eigen / us_baseline, 1) << "x | " << std::scientific
-    << std::setprecision(1) << worst << std::defaultfloat << " |\n";
+    << std::setprecision(1) << worst << std::defaultfloat << " | " << fmt(us_semi_normal, 2) << " | "
+    << fmt(us_dispatch / us_semi_normal, 1) << "x | " << fallbacks << " | " << std::scientific << std::setprecision(1)
+    << worst_semi_normal << std::defaultfloat << " |\n";
   return s.str();
 }
 
 static std::string qr_comparison_table(const Points& points)
 {
   std::string table = "| K | k | system | systems | hand-written QR, dispatch (us) | baseline kernel (us) | "
-                      "Eigen HouseholderQR (us) | gain (dispatch) | gain (baseline) | max relative difference |\n"
-                      "|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|\n";
+                      "Eigen HouseholderQR (us) | gain (dispatch) | gain (baseline) | max relative difference | "
+                      "semi-normal solver, dispatch (us) | its gain over the QR | left to the QR | its max relative "
+                      "difference to the QR |\n"
+                      "|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for(const std::pair<std::size_t, unsigned int>& c : {std::make_pair(std::size_t(2), 18u), std::make_pair(std::size_t(2), 100u),
                                                        std::make_pair(std::size_t(4), 32u), std::make_pair(std::size_t(6), 96u)})
     table += qr_comparison_row(points, c.first, c.second);
@@ -785,6 +810,11 @@ int main(int argc, char** argv)
     qr = qr_comparison_table(sample_bunny(o.mesh, o.n, o.seed));
   }
   if(o.mode == "scaling" || o.mode == "all") scaling = run_scaling(o, notes, targets);
+  if(o.mode == "solver") // the least-squares table alone, printed (nothing written)
+  {
+    std::cout << qr_comparison_table(sample_bunny(o.mesh, o.n, o.seed));
+    return EXIT_SUCCESS;
+  }
   total.stop();
 
   std::ostringstream md;

@@ -44,7 +44,7 @@ the first point of the range is the point where the Wavejet is computed, the oth
 neighbors, and the result is a `Wavejet_form`.
 
 The fit (see \ref Wavejets_fitting in the user manual) uses a PCA frame (or a seed normal), coordinates rescaled by the
-neighborhood radius Rf, least squares by Householder QR in the real basis r^k cos(n theta),
+neighborhood radius Rf, least squares (guarded corrected semi-normal equations, else Householder QR) in the real basis r^k cos(n theta),
 r^k sin(n theta), adaptive order (the order is lowered until there are at least
 `neighbors_per_coefficient * (K+1)(K+2)/2` points and the system has full rank), optional
 Tukey IRLS, and re-fits in the corrected tangent plane (keeping the frame of smallest

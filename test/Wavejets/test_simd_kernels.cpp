@@ -1,19 +1,27 @@
-// The least-squares kernel's three compilations (least_squares.h): the baseline code, the AVX
-// clone and the AVX2 + FMA clone, run on the same systems, with whichever compiler built this test
-// (g++ and clang++ both run it in scripts/test.sh). Checks the documented agreement:
+// The least-squares solvers of least_squares.h, the Householder QR and the guarded semi-normal
+// equations (each in three compilations: the baseline code, the AVX clone and the AVX2 + FMA
+// clone), run on the same systems, with whichever compiler built this test (g++ and clang++ both
+// run it in scripts/test.sh). Checks the documented agreement, for each solver:
 //   - AVX == baseline, bitwise (same arithmetic, wider registers);
 //   - AVX2 + FMA agrees with the baseline to 1e-12 relative, times the system's condition number;
 //   - the baseline solves the system to 1e-13 relative (times the condition number) of Eigen's
 //     HouseholderQR;
 //   - the run-time dispatch (householder_least_squares) picks the best clone the processor
 //     supports (bitwise equal to it), so a processor without AVX falls back to the baseline;
-//   - a rank-deficient system is reported (false) by every variant.
+//   - a rank-deficient system is reported (false) by every variant;
+// and for the semi-normal solver (the one the fits use):
+//   - it agrees with the QR to 1e-10 relative on Wavejet systems of real-looking neighborhoods
+//     (orders 1 to 6; smooth, noisy, anisotropic and clustered samples), and solves most of them
+//     itself;
+//   - its guards hand ill-conditioned systems (nearly dependent columns, nearly collinear
+//     neighborhoods) to the QR: then the result is the QR's, bit for bit.
 // A clone the processor cannot run is reported as skipped, never run.
 // The kernels are written once for a four-lane type: the GCC/Clang vector extension, or (built with
 // CGAL_WAVEJETS_NO_VECTOR_EXTENSIONS, as other compilers get) a plain struct: the case
 // portable_build_bitwise saves the baseline kernel's solutions bit for bit in one build and compares
 // them in the other (see test_portable_build_bitwise()).
 
+#include <CGAL/Wavejets/internal/basis.h>
 #include <CGAL/Wavejets/internal/least_squares.h>
 
 #include <Eigen/Dense>
@@ -55,7 +63,8 @@ struct System
 static bool solve(Kernel kernel, const System& s, std::vector<double>& c)
 {
   const std::size_t P = WI::padded_rows(s.rows);
-  std::vector<double, WI::Aligned_allocator<double> > A(P * (s.cols + 1), 0.), v(2 * P, 0.);
+  std::vector<double, WI::Aligned_allocator<double> > A(P * (s.cols + 1), 0.),
+    v(WI::least_squares_scratch_size(s.rows, s.cols), 0.);
   for(std::size_t j = 0; j < s.cols; ++j)
     for(std::size_t i = 0; i < s.rows; ++i) A[j * P + i] = s.M(i, j);
   for(std::size_t i = 0; i < s.rows; ++i) A[s.cols * P + i] = s.b(i);
@@ -112,9 +121,23 @@ static bool processor_has_avx() { return false; }
 static bool processor_has_fma() { return false; }
 #endif
 
-// Every variant on the same full-rank systems: the documented agreement, and the dispatch.
+/// The compilations of solver S.
+template <WI::Solver S>
+struct Variants
+{
+  static constexpr Kernel baseline = &WI::solver_kernel<S>;
+  static constexpr Kernel avx = &WI::solver_avx<S>;
+  static constexpr Kernel fma = &WI::solver_fma<S>;
+  static constexpr Kernel dispatched = &WI::dispatch_solver<S>;
+  static const char* name() { return S == WI::Solver::HOUSEHOLDER_QR ? "QR" : "semi-normal"; }
+};
+
+// Every variant of solver S on the same full-rank systems: the documented agreement, and the dispatch.
+template <WI::Solver S>
 static void test_full_rank_agreement()
 {
+  typedef Variants<S> V;
+  std::cout << "solver: " << V::name() << std::endl;
   const std::vector<System> systems = random_systems();
   const bool has_avx = processor_has_avx(), has_fma = processor_has_fma();
   if(!WI::avx_dispatch)
@@ -131,17 +154,17 @@ static void test_full_rank_agreement()
     const Eigen::VectorXd reference = s.M.householderQr().solve(s.b);
     std::vector<double> ref(reference.data(), reference.data() + s.cols), base, avx, fma, dispatched;
 
-    all_solved = all_solved && solve(&WI::householder_kernel, s, base);
+    all_solved = all_solved && solve(V::baseline, s, base);
     worst_baseline = (std::max)(worst_baseline, relative_difference(base, ref) / condition);
-    all_solved = all_solved && solve(&WI::householder_least_squares, s, dispatched);
+    all_solved = all_solved && solve(V::dispatched, s, dispatched);
     if(has_avx)
     {
-      all_solved = all_solved && solve(&WI::householder_avx, s, avx);
+      all_solved = all_solved && solve(V::avx, s, avx);
       avx_bitwise = avx_bitwise && avx == base;
     }
     if(has_fma)
     {
-      all_solved = all_solved && solve(&WI::householder_fma, s, fma);
+      all_solved = all_solved && solve(V::fma, s, fma);
       const double d = relative_difference(fma, base);
       worst_fma = (std::max)(worst_fma, d / condition);
       fma_close = fma_close && d <= 1e-12 * condition;
@@ -165,16 +188,18 @@ static void test_full_rank_agreement()
 }
 
 // A rank-deficient system (two equal columns) is reported by every variant.
+template <WI::Solver S>
 static void test_rank_deficient_reported()
 {
+  typedef Variants<S> V;
   const bool has_avx = processor_has_avx(), has_fma = processor_has_fma();
   System deficient = random_systems().back();
   deficient.M.col(3) = deficient.M.col(1);
   std::vector<double> c;
-  bool reported = !solve(&WI::householder_kernel, deficient, c) && !solve(&WI::householder_least_squares, deficient, c);
-  if(has_avx) reported = reported && !solve(&WI::householder_avx, deficient, c);
-  if(has_fma) reported = reported && !solve(&WI::householder_fma, deficient, c);
-  check_printed(reported, "a rank-deficient system is reported by every variant");
+  bool reported = !solve(V::baseline, deficient, c) && !solve(V::dispatched, deficient, c);
+  if(has_avx) reported = reported && !solve(V::avx, deficient, c);
+  if(has_fma) reported = reported && !solve(V::fma, deficient, c);
+  check_printed(reported, std::string(V::name()) + ": a rank-deficient system is reported by every variant");
 }
 
 /// Writes (`write`) or compares the baseline solutions, as exact hexadecimal doubles.
@@ -184,6 +209,8 @@ static void baseline_file(const std::vector<System>& systems, const std::string&
   for(const System& s : systems)
   {
     solve(&WI::householder_kernel, s, c);
+    all.insert(all.end(), c.begin(), c.end());
+    solve(&WI::least_squares_kernel, s, c);
     all.insert(all.end(), c.begin(), c.end());
   }
   if(mode == "--write")
@@ -218,11 +245,145 @@ static void test_portable_build_bitwise()
   else std::cout << "[SKIP] neither WAVEJETS_SIMD_BASELINE_WRITE nor WAVEJETS_SIMD_BASELINE_COMPARE is set" << std::endl;
 }
 
+/// The Wavejet system of order K of L points (x, y, z) of a neighborhood in its (rescaled) frame.
+static System wavejet_system(const std::vector<double>& x, const std::vector<double>& y, const std::vector<double>& z,
+                             std::size_t order)
+{
+  const std::size_t L = x.size(), B = WI::number_of_coefficients(order), P = WI::padded_rows(L);
+  std::vector<double> A(P * B);
+  WI::evaluate_basis_columns(x.data(), y.data(), L, P, order, A.data());
+  System s{L, B, Eigen::MatrixXd(L, B), Eigen::VectorXd(L)};
+  for(std::size_t l = 0; l < L; ++l)
+  {
+    for(std::size_t b = 0; b < B; ++b) s.M(l, b) = A[b * P + l];
+    s.b(l) = z[l];
+  }
+  return s;
+}
+
+/// Neighborhoods like those the fits see, in the rescaled frame (r <= 1, the center first): a
+/// uniform disc sample, an anisotropic strip, a cluster with a few far points; heights of a smooth
+/// surface (saddle, bumps) plus noise; 1.1 to 4 times as many points as unknowns.
+static std::vector<System> wavejet_systems(std::size_t count, std::mt19937_64& random)
+{
+  std::uniform_real_distribution<double> uniform(-1., 1.);
+  std::normal_distribution<double> gauss(0., 1.);
+  std::vector<System> systems;
+  for(std::size_t q = 0; q < count; ++q)
+  {
+    const std::size_t order = 1 + q % 6, B = WI::number_of_coefficients(order);
+    const double ratio = 1.1 + 2.9 * (0.5 + 0.5 * uniform(random));
+    const std::size_t L = (std::max)(B, std::size_t(std::ceil(ratio * double(B))));
+    const int shape = int(q / 6 % 3);
+    const double noise = (q / 18 % 3) * 0.01, a = uniform(random), c = uniform(random);
+    std::vector<double> x(1, 0.), y(1, 0.), z(1, 0.);
+    while(x.size() < L)
+    {
+      double u = uniform(random), v = uniform(random);
+      if(u * u + v * v > 1.) continue;
+      if(shape == 1) v *= 0.2;                              // anisotropic strip
+      if(shape == 2 && x.size() % 5 != 0) { u *= 0.1; v *= 0.1; } // cluster + a few far points
+      x.push_back(u);
+      y.push_back(v);
+      z.push_back(a * u * u - c * v * v + 0.2 * std::sin(3 * u) * v + noise * gauss(random));
+    }
+    systems.push_back(wavejet_system(x, y, z, order));
+  }
+  return systems;
+}
+
+// The semi-normal solver agrees with the QR on Wavejet systems, and solves most of them itself.
+static void test_semi_normal_on_wavejet_systems()
+{
+  std::mt19937_64 random(20261202);
+  const std::vector<System> systems = wavejet_systems(3000, random);
+  double worst = 0.;
+  std::size_t own[3] = {0, 0, 0}, per_shape = 0;
+  bool all_solved = true, small_is_qr = true;
+  std::vector<double> qr, semi_normal, direct;
+  for(std::size_t q = 0; q < systems.size(); ++q)
+  {
+    const System& s = systems[q];
+    const bool solved = solve(&WI::householder_least_squares, s, qr) && solve(&WI::least_squares, s, semi_normal);
+    all_solved = all_solved && solved;
+    // least_squares() leaves the systems below semi_normal_minimum_columns unknowns to the QR.
+    if(s.cols < WI::semi_normal_minimum_columns) small_is_qr = small_is_qr && semi_normal == qr;
+    // The semi-normal equations themselves, at every order, where their guards accept the system.
+    const bool accepted = solve(&WI::semi_normal_kernel, s, direct);
+    if(solved && accepted) worst = (std::max)(worst, relative_difference(direct, qr));
+    own[q / 6 % 3] += accepted;
+    per_shape += q / 6 % 3 == 0;
+  }
+  const std::string n = std::to_string(systems.size()) + " Wavejet systems (orders 1 to 6)";
+  check_printed(all_solved, "QR and least_squares() solve the " + n);
+  check_printed(small_is_qr, "least_squares() == the QR, bitwise, below " + std::to_string(WI::semi_normal_minimum_columns) +
+                               " unknowns");
+  check_printed(worst <= 1e-10, "semi-normal vs QR: " + sci(worst) + " relative (<= 1e-10) on the " + n);
+  // The uniform samples are what real neighborhoods look like (bench_speed: none of 20,000 bunny
+  // neighborhoods per order goes to the QR); strips and clusters are harder and partly refused.
+  check_printed(own[0] == per_shape, "the semi-normal equations solved " + std::to_string(own[0]) + " of the " +
+                                     std::to_string(per_shape) + " uniform samples themselves (all), " +
+                                     std::to_string(own[1]) + " of the strips and " + std::to_string(own[2]) +
+                                     " of the clusters (the rest went to the QR)");
+}
+
+// Ill-conditioned systems go to the QR: the guards refuse them, leave A unchanged, and the result
+// is the QR's, bit for bit.
+static void test_semi_normal_fallback()
+{
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> uniform(-1., 1.);
+  std::vector<System> ill;
+  // Nearly dependent columns: column 3 = column 1 + 1e-7 noise (cond ~ 1e7).
+  System s = random_systems().back();
+  for(std::size_t i = 0; i < s.rows; ++i) s.M(i, 3) = s.M(i, 1) + 1e-7 * uniform(random);
+  ill.push_back(s);
+  // Nearly collinear neighborhoods (points within 1e-4 of a line): order 2 and 4.
+  for(std::size_t order : {std::size_t(2), std::size_t(4)})
+  {
+    std::vector<double> x, y, z;
+    for(std::size_t l = 0; l < 60; ++l)
+    {
+      x.push_back(uniform(random));
+      y.push_back(1e-4 * uniform(random));
+      z.push_back(x.back() * x.back());
+    }
+    ill.push_back(wavejet_system(x, y, z, order));
+  }
+  std::size_t refused = 0, same_as_qr = 0, qr_solved = 0;
+  bool unchanged = true;
+  for(const System& t : ill)
+  {
+    const std::size_t P = WI::padded_rows(t.rows);
+    std::vector<double, WI::Aligned_allocator<double> > A(P * (t.cols + 1), 0.), v(WI::least_squares_scratch_size(t.rows, t.cols));
+    for(std::size_t j = 0; j < t.cols; ++j)
+      for(std::size_t i = 0; i < t.rows; ++i) A[j * P + i] = t.M(i, j);
+    for(std::size_t i = 0; i < t.rows; ++i) A[t.cols * P + i] = t.b(i);
+    const std::vector<double, WI::Aligned_allocator<double> > before = A;
+    std::vector<double> c(t.cols), qr, mine;
+    const bool accepted = WI::semi_normal_kernel(A.data(), t.rows, t.cols, v.data(), c.data());
+    refused += !accepted;
+    unchanged = unchanged && (accepted || A == before);
+    const bool solved_qr = solve(&WI::householder_least_squares, t, qr), solved = solve(&WI::least_squares, t, mine);
+    qr_solved += solved_qr;
+    same_as_qr += solved == solved_qr && (!solved || mine == qr);
+  }
+  const std::string n = std::to_string(ill.size()) + " ill-conditioned systems";
+  check_printed(refused == ill.size(), "the semi-normal guards refused " + std::to_string(refused) + " of the " + n);
+  check_printed(unchanged, "a refused system is left unchanged for the QR");
+  check_printed(same_as_qr == ill.size(), "least_squares() == the QR, bitwise, on the " + n + " (" +
+                                            std::to_string(qr_solved) + " solved, the others reported rank-deficient)");
+}
+
 int main(int argc, char** argv)
 {
   return wavejets_test::run_cases(argc, argv, {
-    Case{"kernels.full_rank_agreement", test_full_rank_agreement},
-    Case{"kernels.rank_deficient_reported", test_rank_deficient_reported},
+    Case{"kernels.full_rank_agreement", test_full_rank_agreement<WI::Solver::HOUSEHOLDER_QR>},
+    Case{"kernels.rank_deficient_reported", test_rank_deficient_reported<WI::Solver::HOUSEHOLDER_QR>},
+    Case{"kernels.semi_normal_full_rank_agreement", test_full_rank_agreement<WI::Solver::SEMI_NORMAL_ELSE_QR>},
+    Case{"kernels.semi_normal_rank_deficient_reported", test_rank_deficient_reported<WI::Solver::SEMI_NORMAL_ELSE_QR>},
+    Case{"kernels.semi_normal_agrees_with_qr_on_wavejet_systems", test_semi_normal_on_wavejet_systems},
+    Case{"kernels.semi_normal_falls_back_to_qr", test_semi_normal_fallback},
     Case{"kernels.portable_build_bitwise", test_portable_build_bitwise},
   });
 }

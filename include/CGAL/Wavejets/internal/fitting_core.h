@@ -521,9 +521,9 @@ private:
   bool solve_work(std::size_t L, std::size_t B, std::vector<double>& c)
   {
     const std::size_t P = padded_rows(L);
-    householder_scratch_.resize(2 * P);
+    solver_scratch_.resize(least_squares_scratch_size(L, B));
     c.resize(B);
-    if(!householder_least_squares(work_.data(), L, B, householder_scratch_.data(), c.data()))
+    if(!least_squares(work_.data(), L, B, solver_scratch_.data(), c.data()))
       return false;
     for(std::size_t b = 0; b < B; ++b)
       if(!std::isfinite(c[b])) return false;
@@ -547,7 +547,7 @@ private:
   Aligned_vector slope_x_, slope_y_, gradient_;
   std::vector<double> base_;
   std::vector<Eigen::Vector3d> scaled_;
-  Aligned_vector system_, work_, xs_, ys_, householder_scratch_; // read by the vectorized kernels
+  Aligned_vector system_, work_, xs_, ys_, solver_scratch_; // read by the vectorized kernels
   std::vector<double> residual_, sorted_, weights_;
   std::vector<double> first_, trial_, best_, trial_solution_;
 };

@@ -10,9 +10,11 @@
 #ifndef CGAL_WAVEJETS_INTERNAL_LEAST_SQUARES_H
 #define CGAL_WAVEJETS_INTERNAL_LEAST_SQUARES_H
 
-// Dense least squares min ||A c - b|| by Householder QR, in place on caller-owned scratch, without
-// heap allocation. The normal equations are not used: the Wavejet systems are too ill-conditioned
-// for them.
+// Dense least squares min ||A c - b||, in place on caller-owned scratch, without heap allocation:
+// least_squares() solves by the corrected semi-normal equations (WAVEJETS_MATH.md section 2, step 3),
+// guarded, and hands the systems too ill-conditioned for them to the Householder QR
+// (householder_least_squares()). Plain normal equations are not used: the Wavejet systems are too
+// ill-conditioned for them.
 //
 // Layout: column-major, every column (the right-hand side is one more column) padded with zero
 // rows to a multiple of `householder_block` rows. Each dot product runs over whole blocks with
@@ -25,6 +27,7 @@
 
 #include <boost/align/aligned_allocator.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstring>
@@ -39,6 +42,8 @@
 // installation section; define them before including any header of the package):
 //   CGAL_WAVEJETS_NO_AVX_DISPATCH        baseline code only (no run-time dispatch);
 //   CGAL_WAVEJETS_NO_FMA_DISPATCH        keep only the AVX variant (results bitwise equal to baseline);
+//   CGAL_WAVEJETS_NO_SEMI_NORMAL         every system solved by the Householder QR (the results of the
+//                                        versions before the semi-normal solver, bit for bit);
 //   CGAL_WAVEJETS_NO_VECTOR_EXTENSIONS   the kernels' four-lane type is a plain struct instead of the
 //                                        GCC/Clang vector extension (what other compilers get): same
 //                                        arithmetic per lane, so bitwise the same results.
@@ -325,6 +330,213 @@ CGAL_WAVEJETS_KERNEL_INLINE bool householder_kernel(double* A, std::size_t rows,
   return true;
 }
 
+/// w[m] = (column m of X) . v for the columns first..last-1 of X (stride P, rows 0..P-1), four
+/// columns per pass over v (householder_dots(): the same partial sums and reduction per column).
+CGAL_WAVEJETS_KERNEL_INLINE void column_dots(const double* v, const double* X, std::size_t P, std::size_t first,
+                                            std::size_t last, double* w)
+{
+  std::size_t m = first;
+  for(; m + 4 <= last; m += 4) householder_dots<4>(v, X + m * P, P, 0, P, w + m);
+  for(; m < last; ++m) householder_dots<1>(v, X + m * P, P, 0, P, w + m);
+}
+
+/// Sum of the four lanes of x, in a fixed order.
+CGAL_WAVEJETS_KERNEL_INLINE double reduce4(const Double4& x)
+{
+  double a[4];
+  store4(a, x);
+  return (a[0] + a[2]) + (a[1] + a[3]);
+}
+
+/// The Gram block G(i + a, j + m) = column (i + a) . column (j + m) of X (stride P, rows 0..P-1) for
+/// a < 2, m < 4: the two columns i, i+1 are loaded once for four columns j.., and each of the
+/// eight dot products has its own four-lane accumulator (one partial sum per row residue mod 4).
+CGAL_WAVEJETS_KERNEL_INLINE void gram_tile(const double* X, std::size_t P, std::size_t i, std::size_t j, double* G,
+                                          std::size_t stride)
+{
+  const Double4 zero = {0., 0., 0., 0.};
+  Double4 acc[2][4] = {{zero, zero, zero, zero}, {zero, zero, zero, zero}};
+  const double* u0 = X + i * P;
+  const double* u1 = u0 + P;
+  const double* x = X + j * P;
+  for(std::size_t r = 0; r < P; r += 4)
+  {
+    Double4 a0, a1, b;
+    load4(a0, u0 + r);
+    load4(a1, u1 + r);
+    for(int m = 0; m < 4; ++m)
+    {
+      load4(b, x + m * P + r);
+      acc[0][m] += a0 * b;
+      acc[1][m] += a1 * b;
+    }
+  }
+  for(int a = 0; a < 2; ++a)
+    for(int m = 0; m < 4; ++m) G[(i + a) * stride + j + m] = reduce4(acc[a][m]);
+}
+
+/// G(i, j) = column i . column j of X (stride P, rows 0..P-1) for 0 <= i < n and i <= j <= n: the
+/// upper triangle of the Gram matrix of the first n columns, and in column n their dots with column
+/// n (b); row-major with row stride `stride` >= n + 1. Pairs of rows by 2 x 4 tiles (gram_tile(),
+/// which may start left of the diagonal: those entries are computed and not read), the rest dot by
+/// dot (householder_dots()).
+CGAL_WAVEJETS_KERNEL_INLINE void gram_upper(const double* X, std::size_t P, std::size_t n, double* G, std::size_t stride)
+{
+  std::size_t i = 0;
+  for(; i + 1 < n; i += 2)
+  {
+    std::size_t j = i / 4 * 4;
+    for(; j + 4 <= n + 1; j += 4) gram_tile(X, P, i, j, G, stride);
+    for(; j <= n; ++j)
+      for(std::size_t a = 0; a < 2; ++a) householder_dots<1>(X + (i + a) * P, X + j * P, P, 0, P, G + (i + a) * stride + j);
+  }
+  if(i < n) column_dots(X + i * P, X, P, i, n + 1, G + i * stride);
+}
+
+/// y[l] -= a x[l] for l in [begin, end): the rows of a triangular factor and the right-hand side
+/// are short, so the whole multiple-of-four part goes through Double4 (the head and the tail lane by
+/// lane, with the same arithmetic).
+CGAL_WAVEJETS_KERNEL_INLINE void subtract_multiple(double* y, const double* x, double a, std::size_t begin, std::size_t end)
+{
+  std::size_t l = begin;
+  for(; l < end && l % 4 != 0; ++l) y[l] -= a * x[l];
+  const Double4 zero = {0., 0., 0., 0.};
+  const Double4 am = zero + a;
+  for(; l + 4 <= end; l += 4)
+  {
+    Double4 xv, yv;
+    load4(xv, x + l);
+    load4(yv, y + l);
+    yv -= am * xv;
+    store4(y + l, yv);
+  }
+  for(; l < end; ++l) y[l] -= a * x[l];
+}
+
+/// Solves R^T R x = y in place: R upper triangular n x n, row-major with row stride S in `R` (row
+/// i: R(i, i..n-1)), `Rt` its transpose likewise (row i: R(0..i, i)), `inverse_diagonal` 1 / R(i, i).
+/// Both triangular solves subtract, per unknown, a multiple of a row from the remaining right-hand
+/// side: independent multiply-adds that vectorize, instead of one latency-bound dot product per
+/// unknown.
+CGAL_WAVEJETS_KERNEL_INLINE void cholesky_solve(const double* R, const double* Rt, const double* inverse_diagonal,
+                                               std::size_t n, std::size_t S, double* x)
+{
+  for(std::size_t i = 0; i < n; ++i) // R^T z = y
+  {
+    x[i] *= inverse_diagonal[i];
+    subtract_multiple(x, R + i * S, x[i], i + 1, n);
+  }
+  for(std::size_t i = n; i-- > 0;) // R x = z
+  {
+    x[i] *= inverse_diagonal[i];
+    subtract_multiple(x, Rt + i * S, x[i], 0, i);
+  }
+}
+
+/// Smallest Cholesky pivot of the column-scaled Gram matrix D M^T M D (unit diagonal) accepted by
+/// the semi-normal solver: below it, cond(M D) is at least about 1 / semi_normal_pivot_guard, and
+/// the QR solves the system instead.
+constexpr double semi_normal_pivot_guard = 1e-3;
+/// Largest relative correction of the refinement step accepted by the semi-normal solver: a larger
+/// one says that the first solve was inaccurate, and the QR solves the system instead.
+constexpr double semi_normal_correction_guard = 1e-6;
+
+/// Scratch doubles needed by semi_normal_kernel() for a system of `cols` unknowns and `rows` rows.
+inline std::size_t semi_normal_scratch_size(std::size_t rows, std::size_t cols)
+{
+  return padded_rows(rows) + 2 * cols * ((cols + 4) / 4 * 4) + 4 * cols + 1;
+}
+
+/// Corrected semi-normal equations (WAVEJETS_MATH.md section 2, step 3; Bjorck): the Cholesky
+/// factor R of the column-scaled M^T M (M = D^-1 (M D), D = diag(1 / |column|)), x from
+/// R^T R x = M^T b, then one step of iterative refinement with M itself (r = b - M x, solve
+/// R^T R dx = M^T r, x += dx). About twice as fast as the Householder QR for the Wavejet systems:
+/// the Gram matrix is one pass of independent dot products, where the QR is a chain of column steps.
+/// Guarded: returns false, leaving A unchanged, when a scaled pivot is below
+/// semi_normal_pivot_guard or the correction exceeds semi_normal_correction_guard times the
+/// solution (then the caller solves with the QR). On success, as the QR: the upper triangle of
+/// A's first `cols` columns holds R (of M, unscaled; the QR's up to the signs of its rows) and
+/// c[0..cols-1] the solution.
+CGAL_WAVEJETS_KERNEL_INLINE bool semi_normal_kernel(double* A, std::size_t rows, std::size_t cols, double* scratch,
+                                                   double* c)
+{
+  if(rows < cols || cols == 0)
+    return false;
+  const std::size_t P = padded_rows(rows), n = cols, S = (n + 4) / 4 * 4; // S >= n + 1
+  double* residual = scratch;      // P
+  double* R = residual + P;        // n x n, row-major, row stride S
+  double* Rt = R + n * S;          // its transpose, likewise
+  double* scale = Rt + n * S;      // D
+  double* inverse_diagonal = scale + n;
+  double* rhs = inverse_diagonal + n; // n + 1: the scaled M^T b (one spare slot)
+  double* correction = rhs + n + 1;
+  const double* b = A + n * P;
+  // Gram matrix, upper triangle, and M^T b (row i of R: column i's dots with columns i..n-1, then b).
+  gram_upper(A, P, n, R, S);
+  for(std::size_t i = 0; i < n; ++i) correction[i] = R[i * S + n]; // column i . b
+  for(std::size_t i = 0; i < n; ++i)
+  {
+    if(!(R[i * S + i] > 0.) || !std::isfinite(R[i * S + i]))
+      return false;
+    scale[i] = 1. / std::sqrt(R[i * S + i]);
+    rhs[i] = correction[i] * scale[i];
+  }
+  // Cholesky of D M^T M D (row-major upper R, overwriting the Gram matrix), right-looking: each
+  // pivot row updates the trailing rows with independent multiply-adds.
+  for(std::size_t i = 0; i < n; ++i)
+    for(std::size_t j = i; j < n; ++j) R[i * S + j] *= scale[i] * scale[j];
+  for(std::size_t i = 0; i < n; ++i)
+  {
+    double* row = R + i * S;
+    if(!(row[i] > semi_normal_pivot_guard * semi_normal_pivot_guard))
+      return false;
+    row[i] = std::sqrt(row[i]);
+    inverse_diagonal[i] = 1. / row[i];
+    for(std::size_t j = i + 1; j < n; ++j) row[j] *= inverse_diagonal[i];
+    for(std::size_t j = i + 1; j < n; ++j) subtract_multiple(R + j * S, row, row[j], j, n);
+  }
+  for(std::size_t i = 0; i < n; ++i)
+    for(std::size_t j = i; j < n; ++j) Rt[j * S + i] = R[i * S + j];
+  cholesky_solve(R, Rt, inverse_diagonal, n, S, rhs); // scaled solution D^-1 x
+  for(std::size_t j = 0; j < n; ++j) c[j] = rhs[j] * scale[j];
+  // Refinement: r = b - M x, D M^T r, solve, x += D dx.
+  std::memcpy(residual, b, P * sizeof(double));
+  for(std::size_t j = 0; j < n; ++j) householder_updates<1>(A + j * P, residual, P, 0, P, c + j);
+  column_dots(residual, A, P, 0, n, correction);
+  for(std::size_t j = 0; j < n; ++j) correction[j] *= scale[j];
+  cholesky_solve(R, Rt, inverse_diagonal, n, S, correction);
+  double largest_x = 0., largest_dx = 0.;
+  for(std::size_t j = 0; j < n; ++j)
+  {
+    const double dx = correction[j] * scale[j];
+    c[j] += dx;
+    largest_x = (std::max)(largest_x, std::abs(c[j]));
+    largest_dx = (std::max)(largest_dx, std::abs(dx));
+  }
+  if(!(largest_dx <= semi_normal_correction_guard * largest_x) || !std::isfinite(largest_x))
+    return false;
+  for(std::size_t j = 0; j < n; ++j) // R of M: D^-1-scaled columns of the scaled factor
+    for(std::size_t i = 0; i <= j; ++i) A[j * P + i] = R[i * S + j] / scale[j];
+  return true;
+}
+
+/// Fewest unknowns for which least_squares_kernel() tries the semi-normal equations: 21 (order 5).
+/// Measured on one core (AVX2 + FMA, one Wavejet system in cache, copy included): 97 x 28 (order 6)
+/// 5.2 us against 6.8 us for the QR; 33 x 15 (order 4) 1.39 against 1.26 us; 101 x 6 (order 2) 0.62
+/// against 0.62 us. Below, the QR's column chain is short and the Gram matrix's reductions cost as
+/// much; the QR solves those systems (their results are those of the QR alone, bit for bit).
+constexpr std::size_t semi_normal_minimum_columns = 21;
+
+/// The solver used for every Wavejet system: from semi_normal_minimum_columns unknowns the guarded
+/// semi-normal equations, and the Householder QR for smaller systems and for those the semi-normal
+/// equations refuse (ill conditioned, see semi_normal_kernel()). `scratch`: least_squares_scratch_size().
+CGAL_WAVEJETS_KERNEL_INLINE bool least_squares_kernel(double* A, std::size_t rows, std::size_t cols, double* scratch,
+                                                     double* c)
+{
+  return (cols >= semi_normal_minimum_columns && semi_normal_kernel(A, rows, cols, scratch, c)) ||
+         householder_kernel(A, rows, cols, scratch, c);
+}
+
 #ifdef CGAL_WAVEJETS_AVX_DISPATCH
 /// True if `householder_fma()` and `householder_avx()` are compiled for those instruction sets and
 /// picked at run time by `householder_least_squares()` (else they are the baseline code).
@@ -335,26 +547,36 @@ constexpr bool avx_dispatch = false;
 #define CGAL_WAVEJETS_TARGET(instruction_sets)
 #endif
 
-/// The kernel compiled for AVX2 + FMA (run it only where the processor has both).
-CGAL_WAVEJETS_TARGET("avx2,fma") inline bool householder_fma(double* A, std::size_t rows, std::size_t cols,
-                                                             double* v, double* c)
+/// The solvers the dispatch below serves.
+enum class Solver
 {
-  return householder_kernel(A, rows, cols, v, c);
-}
-/// The kernel compiled for AVX (run it only where the processor has it).
-CGAL_WAVEJETS_TARGET("avx") inline bool householder_avx(double* A, std::size_t rows, std::size_t cols,
-                                                        double* v, double* c)
+  HOUSEHOLDER_QR,         ///< householder_kernel() only
+  SEMI_NORMAL_ELSE_QR     ///< least_squares_kernel(): the guarded semi-normal equations, else the QR
+};
+
+template <Solver S>
+CGAL_WAVEJETS_KERNEL_INLINE bool solver_kernel(double* A, std::size_t rows, std::size_t cols, double* scratch, double* c)
 {
-  return householder_kernel(A, rows, cols, v, c);
+  return S == Solver::HOUSEHOLDER_QR ? householder_kernel(A, rows, cols, scratch, c)
+                                     : least_squares_kernel(A, rows, cols, scratch, c);
 }
 
-/// Solves min ||A c - b|| for a rows x cols matrix `A`. `A` is column-major with column stride
-/// padded_rows(rows), followed by `b` as column `cols`; rows `rows`..padded_rows(rows)-1 of every
-/// column must be zero. `v` is scratch of 2 padded_rows(rows) doubles. On return the upper triangle
-/// of the first `cols` columns holds R (R(i, j) = A[j * padded_rows(rows) + i], i <= j) and
-/// `c[0..cols-1]` the solution. Returns false if the system has fewer rows than columns or is
-/// numerically rank-deficient.
-inline bool householder_least_squares(double* A, std::size_t rows, std::size_t cols, double* v, double* c)
+/// The kernel compiled for AVX2 + FMA (run it only where the processor has both).
+template <Solver S>
+CGAL_WAVEJETS_TARGET("avx2,fma") inline bool solver_fma(double* A, std::size_t rows, std::size_t cols, double* v, double* c)
+{
+  return solver_kernel<S>(A, rows, cols, v, c);
+}
+/// The kernel compiled for AVX (run it only where the processor has it).
+template <Solver S>
+CGAL_WAVEJETS_TARGET("avx") inline bool solver_avx(double* A, std::size_t rows, std::size_t cols, double* v, double* c)
+{
+  return solver_kernel<S>(A, rows, cols, v, c);
+}
+
+/// Runs solver S compiled for the best instruction set the processor has (the same for every call).
+template <Solver S>
+inline bool dispatch_solver(double* A, std::size_t rows, std::size_t cols, double* v, double* c)
 {
 #ifdef CGAL_WAVEJETS_AVX_DISPATCH
 #ifndef CGAL_WAVEJETS_NO_FMA_DISPATCH
@@ -364,11 +586,40 @@ inline bool householder_least_squares(double* A, std::size_t rows, std::size_t c
 #endif
   static const bool avx = __builtin_cpu_supports("avx");
   if(fma)
-    return householder_fma(A, rows, cols, v, c);
+    return solver_fma<S>(A, rows, cols, v, c);
   if(avx)
-    return householder_avx(A, rows, cols, v, c);
+    return solver_avx<S>(A, rows, cols, v, c);
 #endif
-  return householder_kernel(A, rows, cols, v, c);
+  return solver_kernel<S>(A, rows, cols, v, c);
+}
+
+/// Solves min ||A c - b|| for a rows x cols matrix `A` by Householder QR. `A` is column-major with
+/// column stride padded_rows(rows), followed by `b` as column `cols`; rows `rows`..padded_rows(rows)-1
+/// of every column must be zero. `v` is scratch of 2 padded_rows(rows) doubles. On return the upper
+/// triangle of the first `cols` columns holds R (R(i, j) = A[j * padded_rows(rows) + i], i <= j) and
+/// `c[0..cols-1]` the solution. Returns false if the system has fewer rows than columns or is
+/// numerically rank-deficient.
+inline bool householder_least_squares(double* A, std::size_t rows, std::size_t cols, double* v, double* c)
+{
+  return dispatch_solver<Solver::HOUSEHOLDER_QR>(A, rows, cols, v, c);
+}
+
+/// Scratch doubles needed by least_squares().
+inline std::size_t least_squares_scratch_size(std::size_t rows, std::size_t cols)
+{
+  return (std::max)(2 * padded_rows(rows), semi_normal_scratch_size(rows, cols));
+}
+
+/// The same problem and layout as householder_least_squares(), solved by the guarded semi-normal
+/// equations, or by the QR when they are not accurate enough (semi_normal_kernel()): the solver
+/// of every Wavejet fit. `scratch`: least_squares_scratch_size(rows, cols) doubles.
+inline bool least_squares(double* A, std::size_t rows, std::size_t cols, double* scratch, double* c)
+{
+#ifdef CGAL_WAVEJETS_NO_SEMI_NORMAL
+  return dispatch_solver<Solver::HOUSEHOLDER_QR>(A, rows, cols, scratch, c);
+#else
+  return dispatch_solver<Solver::SEMI_NORMAL_ELSE_QR>(A, rows, cols, scratch, c);
+#endif
 }
 
 } // namespace internal
