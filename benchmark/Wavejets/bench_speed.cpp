@@ -474,20 +474,26 @@ static std::string qr_comparison_row(const Points& points, std::size_t order, un
     std::copy(S.A.begin() + q * size, S.A.begin() + (q + 1) * size, work.begin());
     fallbacks += !WI::semi_normal_kernel(work.data(), S.rows, S.cols, v.data(), c.data());
   }
+  // Largest difference between the solutions `a` and `reference` of one system, relative to the
+  // reference's largest coefficient, over the m systems.
+  auto worst_relative_difference = [&](const std::vector<double>& a, const std::vector<double>& reference) {
+    double worst = 0.;
+    for(std::size_t q = 0; q < m; ++q)
+    {
+      double dn = 0., n = 0.;
+      for(std::size_t j = 0; j < S.cols; ++j)
+      {
+        dn = (std::max)(dn, std::abs(a[q * S.cols + j] - reference[q * S.cols + j]));
+        n = (std::max)(n, std::abs(reference[q * S.cols + j]));
+      }
+      worst = (std::max)(worst, n > 0 ? dn / n : dn);
+    }
+    return worst;
+  };
   std::vector<double> semi_normal = mine;
   const double us_dispatch = time_kernel(&WI::householder_least_squares);
   qr = mine;
-  double worst_semi_normal = 0.;
-  for(std::size_t q = 0; q < m; ++q)
-  {
-    double dn = 0., n = 0.;
-    for(std::size_t j = 0; j < S.cols; ++j)
-    {
-      dn = (std::max)(dn, std::abs(semi_normal[q * S.cols + j] - qr[q * S.cols + j]));
-      n = (std::max)(n, std::abs(qr[q * S.cols + j]));
-    }
-    worst_semi_normal = (std::max)(worst_semi_normal, n > 0 ? dn / n : dn);
-  }
+  const double worst_semi_normal = worst_relative_difference(semi_normal, qr);
   Eigen::HouseholderQR<Eigen::MatrixXd> qr_eigen(S.rows, S.cols);
   CGAL::Real_timer t;
   t.start();
@@ -500,17 +506,7 @@ static std::string qr_comparison_row(const Points& points, std::size_t order, un
   }
   t.stop();
   const double us_eigen = t.time() * 1e6 / double(m);
-  double worst = 0.;
-  for(std::size_t q = 0; q < m; ++q)
-  {
-    double dn = 0., n = 0.;
-    for(std::size_t j = 0; j < S.cols; ++j)
-    {
-      dn = (std::max)(dn, std::abs(mine[q * S.cols + j] - eigen[q * S.cols + j]));
-      n = (std::max)(n, std::abs(eigen[q * S.cols + j]));
-    }
-    worst = (std::max)(worst, n > 0 ? dn / n : dn);
-  }
+  const double worst = worst_relative_difference(mine, eigen);
   std::ostringstream s;
   s << "| " << order << " | " << k << " | " << S.rows << " x " << S.cols << " | " << m << " | "
     << fmt(us_dispatch, 2) << " | " << fmt(us_baseline, 2) << " | " << fmt(us_eigen, 2) << " | "
