@@ -421,7 +421,7 @@ static Qr_systems wavejet_systems(const Points& points, std::size_t m, std::size
   S.A.assign(m * S.P * (S.cols + 1), 0.);
   std::vector<std::size_t> nb;
   std::vector<std::pair<double, std::size_t> > scratch;
-  std::vector<double> x(S.rows), y(S.rows);
+  std::vector<double> x(S.P, 0.), y(S.P, 0.); // evaluate_basis_columns() reads the zero padding rows too
   for(std::size_t q = 0; q < m; ++q)
   {
     const std::size_t i = q * (points.size() / m);

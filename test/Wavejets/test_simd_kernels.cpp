@@ -250,8 +250,10 @@ static System wavejet_system(const std::vector<double>& x, const std::vector<dou
                              std::size_t order)
 {
   const std::size_t L = x.size(), B = WI::number_of_coefficients(order), P = WI::padded_rows(L);
-  std::vector<double> A(P * B);
-  WI::evaluate_basis_columns(x.data(), y.data(), L, P, order, A.data());
+  std::vector<double> A(P * B), xs(x), ys(y);
+  xs.resize(P, 0.); // evaluate_basis_columns() reads the padding rows too (they must be finite)
+  ys.resize(P, 0.);
+  WI::evaluate_basis_columns(xs.data(), ys.data(), L, P, order, A.data());
   System s{L, B, Eigen::MatrixXd(L, B), Eigen::VectorXd(L)};
   for(std::size_t l = 0; l < L; ++l)
   {
