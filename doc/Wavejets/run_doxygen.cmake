@@ -35,7 +35,7 @@ execute_process(COMMAND "${DOXYGEN_EXECUTABLE}" "${WAVEJETS_DOC_OUTPUT_DIR}/Doxy
 
 # The manual links the benchmark reports of the source tree; copy those that exist next to
 # the HTML pages so that the links work in the generated documentation.
-foreach(report results.md accuracy.md workflows.md)
+foreach(report results.md accuracy.md accuracy_ponca.md accuracy_ponca.png workflows.md)
   if(EXISTS "${WAVEJETS_SOURCE_DIR}/benchmark/Wavejets/${report}")
     file(COPY "${WAVEJETS_SOURCE_DIR}/benchmark/Wavejets/${report}" DESTINATION "${html_dir}/benchmark")
   endif()

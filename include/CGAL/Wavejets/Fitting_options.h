@@ -106,8 +106,8 @@ struct Fitting_options
   /// parallel to the fitting plane: |m.n| >= 0.2 |m|, n the frame normal) adds the two rows
   /// w dz/dx(x_l, y_l) = -w (m.u)/(m.n) and w dz/dy(x_l, y_l) = -w (m.v)/(m.n), in the frame (u, v, n),
   /// next to the height rows z(x_l, y_l) = z_l. The fit works in coordinates divided by Rf, where
-  /// heights are in units of Rf and slopes are dimensionless (unchanged by the rescaling), so w weighs
-  /// a slope error of 1 radian against a height error of Rf. The sign of m does not matter
+  /// heights are in units of Rf and slopes are dimensionless (unchanged by the rescaling), so a slope
+  /// error of 1 radian weighs as much as a height error of w Rf. The sign of m does not matter
   /// (unoriented normals are fine). 0 switches the slope rows off.
   double neighbor_normal_weight = 1.;
   /// Weight the rows of neighbor q by the smooth compact kernel (1 - |q - p|^2 / Rf^2)^2 (points at
