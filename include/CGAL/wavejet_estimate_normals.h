@@ -139,7 +139,8 @@ normals that are read always orient the frames.
   \cgalParamNEnd
   \cgalParamNBegin{Wavejets::parameters::neighbor_normal_weight}
     \cgalParamDescription{weight w of the slope equations of the Hermite fit against the height equations: with
-                          coordinates divided by the neighborhood radius Rf, the slope rows are multiplied by w, so
+                          coordinates divided by the neighborhood radius Rf, the slope rows are multiplied by w (and by
+                          cos^2 of the normal's angle to the fitting plane's normal, its error's growth), so
                           that a slope error of 1 (radian) weighs as much as a height error of w Rf. On noisy
                           data 3 to 10 is better than 1 (about 3% on the accuracy tables against Ponca's APSS)}
     \cgalParamType{`double`, finite and > 0}

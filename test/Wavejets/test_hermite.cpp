@@ -1,7 +1,7 @@
 // Tests of the Hermite fit (heights and the neighbors' normals, Fitting_options::neighbor_normal_weight,
 // Wavejets::parameters::use_neighbor_normals) and of the compact weights (compact_weights):
 // the basis gradient, exact recovery of polynomial height fields, that the slope equations are
-// used and are invariant under the normals' sign and length, analytic curvature of the sphere and
+// used, with the documented row weights, and are invariant under the normals' sign and length, analytic curvature of the sphere and
 // the torus through the point-set functions (with input normals and with the one-call two-pass
 // pipeline that estimates them), robustness to outliers, Sequential == Parallel bitwise, and the
 // parameter checks.
@@ -13,6 +13,8 @@
 #include <CGAL/wavejet_enhance_positions.h>
 #include <CGAL/wavejet_estimate_curvatures.h>
 #include <CGAL/wavejet_estimate_normals.h>
+
+#include <Eigen/Dense>
 
 #include "analytic_surfaces.h"
 #include "wavejets_test_support.h"
@@ -215,6 +217,67 @@ static void test_slopes_are_used()
   CHECK(bitwise_equal(fz.coefficients(), fr.coefficients()), "neighbor_normal_weight 0 is the plain fit");
 }
 
+// The slope rows are weighted as Fitting_options::neighbor_normal_weight documents, w cos^2 theta:
+// heights of a quadric and normals tilted at random by up to 70 degrees (inconsistent data, so the
+// weights decide the compromise), Rf = 1. The fitted height field equals an independent weighted
+// least-squares quadric (monomial basis, Eigen's QR) to 1e-10, and differs from the one without the
+// cos^2 theta factor.
+static void test_slope_row_weights()
+{
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> U(-0.6, 0.6), A(0., 1.22), D(0., 6.283185307179586);
+  std::vector<Point> pts;
+  std::vector<Vector> normals;
+  while(pts.size() < 40)
+  {
+    const double x = pts.empty() ? 0. : U(rng), y = pts.empty() ? 0. : U(rng);
+    if(x * x + y * y > 0.9) continue;
+    pts.emplace_back(x, y, 0.3 * x * x - 0.2 * x * y + 0.1 * y);
+    const double tilt = normals.empty() ? 0. : A(rng), direction = D(rng); // the first one seeds the frame: (0, 0, 1)
+    normals.emplace_back(std::sin(tilt) * std::cos(direction), std::sin(tilt) * std::sin(direction), std::cos(tilt));
+  }
+  const double w = 2.;
+  // Independent fit: unknowns of p = a0 + a1 x + a2 y + a3 x^2 + a4 x y + a5 y^2.
+  auto fit = [&](bool cos2) {
+    Eigen::MatrixXd M = Eigen::MatrixXd::Zero(3 * pts.size(), 6);
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(3 * pts.size());
+    for(std::size_t l = 0; l < pts.size(); ++l)
+    {
+      const double x = pts[l].x(), y = pts[l].y();
+      const Vector& m = normals[l];
+      const double c = w * (cos2 ? m.z() * m.z() / m.squared_length() : 1.);
+      M.row(3 * l) << 1., x, y, x * x, x * y, y * y;
+      b(3 * l) = pts[l].z();
+      M.row(3 * l + 1) << 0., c, 0., 2 * c * x, c * y, 0.;
+      b(3 * l + 1) = -c * m.x() / m.z();
+      M.row(3 * l + 2) << 0., 0., c, 0., c * x, 2 * c * y;
+      b(3 * l + 2) = -c * m.y() / m.z();
+    }
+    return Eigen::VectorXd(M.householderQr().solve(b));
+  };
+  const Eigen::VectorXd with = fit(true), without = fit(false);
+  CGAL::Wavejets::Fitting_options options;
+  options.normal_use = CGAL::Wavejets::Normal_use::SEED_FRAME;
+  options.correction_iterations = 0;
+  options.neighborhood_radius = 1.;
+  options.neighbor_normal_weight = w;
+  Fitting fitting(options);
+  const Fitting::Wavejet_form f = fitting(pts.begin(), pts.end(), normals.begin(), std::size_t(2));
+  CHECK(f.is_valid() && f.order() == 2, "Hermite fit of order 2");
+  if(!f.is_valid()) return;
+  double to_with = 0., to_without = 0.;
+  for(int t = 0; t < 20; ++t)
+  {
+    const double x = U(rng), y = U(rng);
+    const Eigen::Matrix<double, 6, 1> m = (Eigen::Matrix<double, 6, 1>() << 1., x, y, x * x, x * y, y * y).finished();
+    const double z = form_height(f, Point(x, y, 0.));
+    to_with = std::max(to_with, std::abs(z - m.dot(with)));
+    to_without = std::max(to_without, std::abs(z - m.dot(without)));
+  }
+  CHECK(to_with < 1e-10, "the fit is the least-squares fit with slope rows weighted by w cos^2 theta: " << to_with);
+  CHECK(to_without > 1e-3, "and not the one without cos^2 theta: " << to_without);
+}
+
 struct Cloud
 {
   std::vector<WB::Sample> samples;
@@ -399,6 +462,7 @@ int main(int argc, char** argv)
     Case{"fit.basis_gradient", test_basis_gradient},
     Case{"fit.exact_recovery_of_polynomials", test_exact_recovery},
     Case{"fit.slopes_are_used", test_slopes_are_used},
+    Case{"fit.slope_row_weights", test_slope_row_weights},
     Case{"functions.analytic_sphere_and_torus", test_analytic_surfaces},
     Case{"functions.outliers", test_outliers},
     Case{"functions.sequential_equals_parallel", test_sequential_equals_parallel},

@@ -396,6 +396,7 @@ private:
     const std::size_t B = number_of_coefficients(order);
     slope_points_.clear();
     slope_targets_.clear();
+    slope_weights_.clear();
     if(normals_)
       for(std::size_t l = 0; l < L; ++l)
       {
@@ -407,6 +408,10 @@ private:
           continue;
         slope_points_.push_back(l);
         slope_targets_.emplace_back(-m.dot(frame.u) / mn, -m.dot(frame.v) / mn);
+        // The slope of a normal at angle theta from the frame normal moves by up to d theta / cos^2 theta
+        // when the normal turns by d theta: its rows are multiplied by cos^2 theta, so that a tilted
+        // noisy normal weighs no more than its angular error warrants.
+        slope_weights_.push_back(mn * mn / m.squaredNorm());
       }
     const std::size_t M = slope_points_.size(), R = L + 2 * M;
     const std::size_t P = padded_rows(R);
@@ -445,7 +450,7 @@ private:
       {
         h[L + m] = slope_targets_[m].first;
         h[L + M + m] = slope_targets_[m].second;
-        base_[L + m] = base_[L + M + m] = normal_weight_ * base_[slope_points_[m]];
+        base_[L + m] = base_[L + M + m] = normal_weight_ * slope_weights_[m] * base_[slope_points_[m]];
       }
     }
     c.resize(B);
@@ -544,6 +549,7 @@ private:
   const Eigen::Vector3d* normals_ = nullptr;
   std::vector<std::size_t> slope_points_;
   std::vector<std::pair<double, double> > slope_targets_;
+  std::vector<double> slope_weights_;
   Aligned_vector slope_x_, slope_y_, gradient_;
   std::vector<double> base_;
   std::vector<Eigen::Vector3d> scaled_;
