@@ -142,7 +142,7 @@ normals that are read always orient the frames.
                           coordinates divided by the neighborhood radius Rf, the slope rows are multiplied by w (and by
                           cos^2 of the normal's angle to the fitting plane's normal, its error's growth), so
                           that a slope error of 1 (radian) weighs as much as a height error of w Rf. On noisy
-                          data 3 to 10 is better than 1 (about 3% on the accuracy tables against Ponca's APSS)}
+                          data 10 is better than 1 (2.5% on average on the accuracy tables against Ponca's APSS)}
     \cgalParamType{`double`, finite and > 0}
     \cgalParamDefault{1}
   \cgalParamNEnd

@@ -1,8 +1,8 @@
 // Tests of the Hermite fit (heights and the neighbors' normals, Fitting_options::neighbor_normal_weight,
 // Wavejets::parameters::use_neighbor_normals) and of the compact weights (compact_weights):
 // the basis gradient, exact recovery of polynomial height fields, that the slope equations are
-// used, with the documented row weights, and are invariant under the normals' sign and length, analytic curvature of the sphere and
-// the torus through the point-set functions (with input normals and with the one-call two-pass
+// used, with the documented row weights, and are invariant under the normals' sign and length,
+// analytic curvature of the sphere and the torus through the point-set functions (with input normals and with the one-call two-pass
 // pipeline that estimates them), robustness to outliers, Sequential == Parallel bitwise, and the
 // parameter checks.
 
