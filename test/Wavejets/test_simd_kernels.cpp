@@ -72,6 +72,29 @@ static bool solve(Kernel kernel, const System& s, std::vector<double>& c)
   return kernel(A.data(), s.rows, s.cols, v.data(), c.data());
 }
 
+/// The order-2 problem of L points (x, y, h) solved by `kernel` (a compilation of the
+/// ORDER2_MOMENTS solver), which reads the columns x, y, h; false if its guards refuse it.
+static bool solve_order2(Kernel kernel, const Eigen::VectorXd& x, const Eigen::VectorXd& y, const Eigen::VectorXd& h,
+                         std::vector<double>& c)
+{
+  const std::size_t L = std::size_t(x.size()), P = WI::padded_rows(L);
+  std::vector<double, WI::Aligned_allocator<double> > X(3 * P, 0.);
+  for(std::size_t l = 0; l < L; ++l)
+  {
+    X[l] = x(l);
+    X[P + l] = y(l);
+    X[2 * P + l] = h(l);
+  }
+  c.assign(WI::order2_columns, 0.);
+  return kernel(X.data(), L, WI::order2_columns, nullptr, c.data());
+}
+
+/// An order-2 Wavejet system (columns 1, x, y, ...: basis.h) solved from its points by `kernel`.
+static bool solve_order2(Kernel kernel, const System& s, std::vector<double>& c)
+{
+  return solve_order2(kernel, s.M.col(1), s.M.col(2), s.b, c);
+}
+
 static std::string sci(double x)
 {
   char b[32];
@@ -129,7 +152,10 @@ struct Variants
   static constexpr Kernel avx = &WI::solver_avx<S>;
   static constexpr Kernel fma = &WI::solver_fma<S>;
   static constexpr Kernel dispatched = &WI::dispatch_solver<S>;
-  static const char* name() { return S == WI::Solver::HOUSEHOLDER_QR ? "QR" : "semi-normal"; }
+  static const char* name()
+  {
+    return S == WI::Solver::HOUSEHOLDER_QR ? "QR" : S == WI::Solver::SEMI_NORMAL_ELSE_QR ? "semi-normal" : "order-2 moments";
+  }
 };
 
 // Every variant of solver S on the same full-rank systems: the documented agreement, and the dispatch.
@@ -212,6 +238,12 @@ static void baseline_file(const std::vector<System>& systems, const std::string&
     all.insert(all.end(), c.begin(), c.end());
     solve(&WI::least_squares_kernel, s, c);
     all.insert(all.end(), c.begin(), c.end());
+    if(s.rows >= WI::order2_columns) // points (column 0, column 1, b)
+    {
+      if(!solve_order2(&WI::solver_kernel<WI::Solver::ORDER2_MOMENTS>, s.M.col(0), s.M.col(1), s.b, c))
+        c.assign(1, -1.); // refused: a marker
+      all.insert(all.end(), c.begin(), c.end());
+    }
   }
   if(mode == "--write")
   {
@@ -329,6 +361,47 @@ static void test_semi_normal_on_wavejet_systems()
                                      " of the clusters (the rest went to the QR)");
 }
 
+// The order-2 solver from the moments (no M) agrees with the QR of the built system, in every
+// compilation the processor runs, and solves the uniform samples itself.
+static void test_order2_moments_on_wavejet_systems()
+{
+  std::mt19937_64 random(20261202);
+  typedef Variants<WI::Solver::ORDER2_MOMENTS> V;
+  std::vector<std::pair<std::string, Kernel> > variants = {{"baseline", V::baseline}, {"dispatched", V::dispatched}};
+  if(processor_has_avx()) variants.emplace_back("AVX", V::avx);
+  if(processor_has_fma()) variants.emplace_back("AVX2 + FMA", V::fma);
+  std::size_t systems = 0, own[3] = {0, 0, 0}, per_shape[3] = {0, 0, 0};
+  double worst = 0.;
+  bool qr_solved = true;
+  std::vector<double> qr, mine;
+  const std::vector<System> corpus = wavejet_systems(3000, random);
+  for(std::size_t q = 0; q < corpus.size(); ++q)
+  {
+    const System& s = corpus[q];
+    if(s.cols != WI::order2_columns) continue;
+    ++systems;
+    qr_solved = qr_solved && solve(&WI::householder_least_squares, s, qr);
+    const int shape = int(q / 6 % 3);
+    ++per_shape[shape];
+    bool accepted_by_all = true;
+    for(const auto& v : variants)
+      if(solve_order2(v.second, s, mine)) worst = (std::max)(worst, relative_difference(mine, qr));
+      else accepted_by_all = false;
+    own[shape] += accepted_by_all;
+  }
+  std::string names;
+  for(const auto& v : variants) names += (names.empty() ? "" : ", ") + v.first;
+  const std::string n = std::to_string(systems) + " order-2 Wavejet systems";
+  check_printed(qr_solved && systems > 400, "the QR solves the " + n);
+  check_printed(worst <= 1e-10, "order-2 moments vs QR: " + sci(worst) + " relative (<= 1e-10) on the " + n + " (" +
+                                  names + ")");
+  check_printed(own[0] == per_shape[0], "the moments solved " + std::to_string(own[0]) + " of the " +
+                                          std::to_string(per_shape[0]) + " uniform samples themselves (all), " +
+                                          std::to_string(own[1]) + " of " + std::to_string(per_shape[1]) +
+                                          " strips and " + std::to_string(own[2]) + " of " +
+                                          std::to_string(per_shape[2]) + " clusters");
+}
+
 // Ill-conditioned systems go to the QR: the guards refuse them, leave A unchanged, and the result
 // is the QR's, bit for bit.
 static void test_semi_normal_fallback()
@@ -352,7 +425,7 @@ static void test_semi_normal_fallback()
     }
     ill.push_back(wavejet_system(x, y, z, order));
   }
-  std::size_t refused = 0, same_as_qr = 0, qr_solved = 0;
+  std::size_t refused = 0, same_as_qr = 0, qr_solved = 0, order2_systems = 0, order2_refused = 0;
   bool unchanged = true;
   for(const System& t : ill)
   {
@@ -369,10 +442,18 @@ static void test_semi_normal_fallback()
     const bool solved_qr = solve(&WI::householder_least_squares, t, qr), solved = solve(&WI::least_squares, t, mine);
     qr_solved += solved_qr;
     same_as_qr += solved == solved_qr && (!solved || mine == qr);
+    if(t.cols == WI::order2_columns && t.M.col(0).isOnes()) // a Wavejet system: the moments refuse it too
+    {
+      ++order2_systems;
+      order2_refused += !solve_order2(&WI::dispatch_solver<WI::Solver::ORDER2_MOMENTS>, t, mine);
+    }
   }
   const std::string n = std::to_string(ill.size()) + " ill-conditioned systems";
   check_printed(refused == ill.size(), "the semi-normal guards refused " + std::to_string(refused) + " of the " + n);
   check_printed(unchanged, "a refused system is left unchanged for the QR");
+  check_printed(order2_systems == 1 && order2_refused == order2_systems,
+                "the order-2 moments refused " + std::to_string(order2_refused) + " of the " +
+                  std::to_string(order2_systems) + " nearly collinear order-2 neighborhood(s)");
   check_printed(same_as_qr == ill.size(), "least_squares() == the QR, bitwise, on the " + n + " (" +
                                             std::to_string(qr_solved) + " solved, the others reported rank-deficient)");
 }
@@ -386,6 +467,7 @@ int main(int argc, char** argv)
     Case{"kernels.semi_normal_rank_deficient_reported", test_rank_deficient_reported<WI::Solver::SEMI_NORMAL_ELSE_QR>},
     Case{"kernels.semi_normal_agrees_with_qr_on_wavejet_systems", test_semi_normal_on_wavejet_systems},
     Case{"kernels.semi_normal_falls_back_to_qr", test_semi_normal_fallback},
+    Case{"kernels.order2_moments_agree_with_qr_on_wavejet_systems", test_order2_moments_on_wavejet_systems},
     Case{"kernels.portable_build_bitwise", test_portable_build_bitwise},
   });
 }

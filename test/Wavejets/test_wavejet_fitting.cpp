@@ -1626,6 +1626,63 @@ void test_low_order_tangent_search(const Kitten& kitten)
   end_section();
 }
 
+// Order-2 fits without a condition number (the point-set functions' setting) solve their systems
+// from the moments, without building them (least_squares.h, order2_least_squares()); with it (the
+// class's default), by the QR of the built system. Both agree on real neighborhoods; on nearly
+// collinear ones the moments' guards refuse every system, and the QR's result comes out bit for bit.
+void test_order2_moments(const Kitten& kitten)
+{
+  begin_section("10. order-2 fits from the moments vs the QR of the built system");
+  Fitting_options moments_options, qr_options;
+  moments_options.compute_condition_number = false;
+  Fitting moments(moments_options), qr(qr_options);
+  double worst_coefficient = 0., worst_normal = 0.;
+  std::size_t compared = 0;
+  if(check(!kitten.pts.empty(), "kitten not loaded"))
+    for(std::size_t q = 0; q < kitten.pts.size(); q += 97)
+      for(std::size_t size : {std::size_t(18), std::size_t(100)})
+      {
+        const std::vector<Point> pts = kitten.neighborhood(q, size);
+        const Form a = moments(pts.begin(), pts.end(), 2), b = qr(pts.begin(), pts.end(), 2);
+        if(!check(a.is_valid() && b.is_valid() && a.order() == b.order() &&
+                    a.number_of_corrections() == b.number_of_corrections(),
+                  str("kitten point ", q, ", ", size, " points: both fits valid, same order and re-fits")))
+          continue;
+        double largest = 0., difference = 0.;
+        for(std::size_t j = 0; j < a.coefficients().size(); ++j)
+        {
+          largest = (std::max)(largest, std::abs(b.coefficients()[j]));
+          difference = (std::max)(difference, std::abs(a.coefficients()[j] - b.coefficients()[j]));
+        }
+        worst_coefficient = (std::max)(worst_coefficient, difference / largest);
+        worst_normal = (std::max)(worst_normal, std::sqrt(CGAL::squared_distance(CGAL::ORIGIN + a.normal_direction(),
+                                                                                 CGAL::ORIGIN + b.normal_direction())));
+        ++compared;
+      }
+  std::cout << "  " << compared << " kitten neighborhoods (18 and 100 points): coefficients within " << worst_coefficient
+            << " relative, normals within " << worst_normal << std::endl;
+  check(compared > 100 && worst_coefficient <= 1e-10 && worst_normal <= 1e-12,
+        str("moments vs QR: coefficients ", worst_coefficient, " relative (<= 1e-10), normals ", worst_normal,
+            " (<= 1e-12)"));
+
+  // Nearly collinear neighborhoods (within 1e-4 of a line, on a parabola): refused, the QR decides.
+  std::mt19937_64 rng(10);
+  std::uniform_real_distribution<double> U(-1, 1);
+  bool same = true;
+  for(int t = 0; t < 20; ++t)
+  {
+    std::vector<Point> pts(1, Point(0, 0, 0));
+    for(int l = 0; l < 40; ++l)
+    {
+      const double x = U(rng);
+      pts.push_back(Point(x, 1e-4 * U(rng), x * x));
+    }
+    same = same && same_form(moments(pts.begin(), pts.end(), 2), qr(pts.begin(), pts.end(), 2));
+  }
+  check(same, "nearly collinear neighborhoods: the same fit as the QR's, bit for bit (the moments refuse them)");
+  end_section();
+}
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -1642,5 +1699,6 @@ int main(int argc, char** argv)
     Case{"failures.adaptive_order_and_failure_states", test_adaptive_order_and_failures},
     Case{"accessors", [] { test_accessors(kitten()); }},
     Case{"tangent_plane_order", [] { test_low_order_tangent_search(kitten()); }},
+    Case{"solver.order2_moments", [] { test_order2_moments(kitten()); }},
   });
 }

@@ -97,8 +97,10 @@ struct Fitting_options
   Curvature_frame curvature_frame = Curvature_frame::INITIAL_FRAME;
   /// Role of a given normal.
   Normal_use normal_use = Normal_use::ORIENT;
-  /// Compute `condition_number()` (an SVD of the triangular factor; costs a little). The point-set
-  /// functions, which have no use for it, switch it off.
+  /// Compute `condition_number()` (an SVD of the triangular factor; costs a little). It also makes
+  /// the order-2 fits build their systems and solve them by the QR, where they are otherwise solved
+  /// from the neighborhood's moments without building them (faster; the two agree to about 1e-15
+  /// relative on real neighborhoods). The point-set functions, which have no use for it, switch it off.
   bool compute_condition_number = true;
   /// Hermite fit: weight w of the slope equations given by the neighbors' normals (used only when
   /// normals of the neighbors are given, e.g. through `Wavejet_fitting`'s overload that takes them,

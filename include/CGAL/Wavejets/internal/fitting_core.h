@@ -122,11 +122,15 @@ public:
       return fail(out, Fit_status::OUT_OF_RANGE);
     out.radius = radius;
 
-    // Rescaled offsets: all later work is in units of Rf.
-    scaled_.resize(L);
+    // Rescaled offsets: all later work is in units of Rf. Stored coordinate by coordinate (x, y, z
+    // columns of stride padded_rows(L), zero padding rows) for the vectorized loops below.
     const double inv_radius = 1. / radius;
+    const std::size_t P = padded_rows(L);
+    scaled_.resize(3 * P);
     for(std::size_t l = 0; l < L; ++l)
-      scaled_[l] = offsets[l] * inv_radius;
+      for(int i = 0; i < 3; ++i) scaled_[i * P + l] = offsets[l][i] * inv_radius;
+    for(std::size_t l = L; l < P; ++l)
+      for(int i = 0; i < 3; ++i) scaled_[i * P + l] = 0.;
 
     Frame frame;
     if(!initial_frame(L, options, hint_normal, frame, out))
@@ -259,16 +263,31 @@ private:
   bool initial_frame(std::size_t L, const Fitting_options& options, const Eigen::Vector3d* hint, Frame& f,
                      Fit_result& out)
   {
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-    for(std::size_t l = 0; l < L; ++l) mean += scaled_[l];
-    mean /= double(L);
-    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-    for(std::size_t l = 0; l < L; ++l)
+    // Covariance from the first and second moments, in one pass over the coordinates. The rescaled
+    // offsets have norms at most 1: subtracting the mean's square costs about 1e-16 absolute.
+    const std::size_t P = padded_rows(L);
+    const double* coordinate[3] = {scaled_.data(), scaled_.data() + P, scaled_.data() + 2 * P};
+    const Double4 zero = {0., 0., 0., 0.};
+    Double4 first[3] = {zero, zero, zero}, second[6] = {zero, zero, zero, zero, zero, zero};
+    for(std::size_t l = 0; l < P; l += 4)
     {
-      const Eigen::Vector3d d = scaled_[l] - mean;
-      cov.noalias() += d * d.transpose();
+      Double4 d[3];
+      for(int i = 0; i < 3; ++i) load4(d[i], coordinate[i] + l);
+      for(int i = 0, k = 0; i < 3; ++i)
+      {
+        first[i] += d[i];
+        for(int j = i; j < 3; ++j, ++k) second[k] += d[i] * d[j];
+      }
     }
-    cov /= double(L);
+    Eigen::Vector3d mean;
+    Eigen::Matrix3d cov;
+    for(int i = 0, k = 0; i < 3; ++i)
+    {
+      mean(i) = reduce4(first[i]) / double(L);
+      for(int j = i; j < 3; ++j, ++k) cov(i, j) = reduce4(second[k]) / double(L);
+    }
+    for(int i = 0; i < 3; ++i)
+      for(int j = i; j < 3; ++j) cov(j, i) = cov(i, j) = cov(i, j) - mean(i) * mean(j);
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov); // ascending eigenvalues
     if(eig.info() != Eigen::Success)
       return false;
@@ -328,14 +347,23 @@ private:
   {
     xs_.resize(P);
     ys_.resize(P);
-    for(std::size_t l = 0; l < L; ++l)
-    {
-      const Eigen::Vector3d& d = scaled_[l];
-      xs_[l] = d.dot(frame.u);
-      ys_[l] = d.dot(frame.v);
-      h[l] = d.dot(frame.n);
-    }
-    for(std::size_t l = L; l < P; ++l) xs_[l] = ys_[l] = h[l] = 0.;
+    project_onto_frame(L, P, frame, xs_.data(), ys_.data(), h);
+  }
+
+  // The same into x, y and h (each with zeros on the rows L..P-1).
+  void project_onto_frame(std::size_t L, std::size_t P, const Frame& frame, double* x, double* y, double* h) const
+  {
+    const double* sx = scaled_.data();
+    const double* sy = sx + padded_rows(L);
+    const double* sz = sy + padded_rows(L);
+    auto project = [&](const Eigen::Vector3d& axis, double* out) {
+      const double a = axis.x(), b = axis.y(), c = axis.z();
+      for(std::size_t l = 0; l < L; ++l) out[l] = sx[l] * a + sy[l] * b + sz[l] * c;
+      for(std::size_t l = L; l < P; ++l) out[l] = 0.;
+    };
+    project(frame.u, x);
+    project(frame.v, y);
+    project(frame.n, h);
   }
 
   // Builds the system [A | h] in `frame` (column-major, column stride padded_rows(L), zero
@@ -349,6 +377,20 @@ private:
     const std::size_t B = number_of_coefficients(order);
     const std::size_t P = padded_rows(L);
     const bool keep_system = robust_iterations > 0;
+#ifndef CGAL_WAVEJETS_NO_SEMI_NORMAL
+    // Order 2 without IRLS nor condition number: the system is solved from its moments, not built
+    // (order2_least_squares()); if its guards refuse it, it is built and solved below.
+    if(order == 2 && !keep_system && !want_condition_)
+    {
+      coordinates_.resize(3 * P);
+      double* X = coordinates_.data();
+      project_onto_frame(L, P, frame, X, X + P, X + 2 * P);
+      c.resize(B);
+      if(order2_least_squares(X, L, c.data()) &&
+         std::all_of(c.begin(), c.end(), [](double v) { return std::isfinite(v); }))
+        return true;
+    }
+#endif
     Aligned_vector& system = keep_system ? system_ : work_;
     system.resize(P * (B + 1));
     double* A = system.data();
@@ -420,8 +462,12 @@ private:
     double* h = A + B * P;
     project_onto_frame(L, P, frame, h);
     base_.resize(R);
+    const std::size_t PL = padded_rows(L); // column stride of scaled_
     for(std::size_t l = 0; l < L; ++l) // sqrt of the weight (1 - |d|^2)^2
-      base_[l] = compact_ ? (std::max)(1. - scaled_[l].squaredNorm(), 0.) : 1.;
+    {
+      const double* d = scaled_.data() + l;
+      base_[l] = compact_ ? (std::max)(1. - (d[0] * d[0] + d[PL] * d[PL] + d[2 * PL] * d[2 * PL]), 0.) : 1.;
+    }
     evaluate_basis_columns(xs_.data(), ys_.data(), L, P, order, A);
     if(M > 0)
     {
@@ -552,8 +598,7 @@ private:
   std::vector<double> slope_weights_;
   Aligned_vector slope_x_, slope_y_, gradient_;
   std::vector<double> base_;
-  std::vector<Eigen::Vector3d> scaled_;
-  Aligned_vector system_, work_, xs_, ys_, solver_scratch_; // read by the vectorized kernels
+  Aligned_vector scaled_, system_, work_, xs_, ys_, coordinates_, solver_scratch_; // read by the vectorized kernels
   std::vector<double> residual_, sorted_, weights_;
   std::vector<double> first_, trial_, best_, trial_solution_;
 };

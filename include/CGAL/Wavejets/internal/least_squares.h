@@ -31,6 +31,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstring>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -418,8 +419,9 @@ CGAL_WAVEJETS_KERNEL_INLINE void subtract_multiple(double* y, const double* x, d
 /// Both triangular solves subtract, per unknown, a multiple of a row from the remaining right-hand
 /// side: independent multiply-adds that vectorize, instead of one latency-bound dot product per
 /// unknown.
+template <class Count, class Stride>
 CGAL_WAVEJETS_KERNEL_INLINE void cholesky_solve(const double* R, const double* Rt, const double* inverse_diagonal,
-                                               std::size_t n, std::size_t S, double* x)
+                                               Count n, Stride S, double* x)
 {
   for(std::size_t i = 0; i < n; ++i) // R^T z = y
   {
@@ -445,6 +447,65 @@ constexpr double semi_normal_correction_guard = 1e-6;
 inline std::size_t semi_normal_scratch_size(std::size_t rows, std::size_t cols)
 {
   return padded_rows(rows) + 2 * cols * ((cols + 4) / 4 * 4) + 4 * cols + 1;
+}
+
+/// The solve shared by the semi-normal solvers, from the Gram matrix G = M^T M (upper triangle,
+/// row-major with row stride S in `R`, S >= n + 1) and M^T b (in R's column n): the column scales
+/// `scale` (D = diag(1 / sqrt(G(i, i)))), the Cholesky factor of D G D (overwriting G in `R`, its
+/// transpose in `Rt`, 1 / its diagonal in `inverse_diagonal`) and the first solution x into `c`.
+/// `rhs`: n scratch doubles. Returns false if G has a non-positive or non-finite diagonal entry
+/// or a scaled pivot is below semi_normal_pivot_guard.
+template <class Count, class Stride>
+CGAL_WAVEJETS_KERNEL_INLINE bool semi_normal_factor_and_solve(double* R, double* Rt, double* scale, double* inverse_diagonal,
+                                                             double* rhs, Count n, Stride S, double* c)
+{
+  for(std::size_t i = 0; i < n; ++i)
+  {
+    if(!(R[i * S + i] > 0.) || !std::isfinite(R[i * S + i]))
+      return false;
+    scale[i] = 1. / std::sqrt(R[i * S + i]);
+    rhs[i] = R[i * S + n] * scale[i];
+  }
+  // Cholesky of D M^T M D (row-major upper R, overwriting the Gram matrix), right-looking: each
+  // pivot row updates the trailing rows with independent multiply-adds.
+  for(std::size_t i = 0; i < n; ++i)
+    for(std::size_t j = i; j < n; ++j) R[i * S + j] *= scale[i] * scale[j];
+  for(std::size_t i = 0; i < n; ++i)
+  {
+    double* row = R + i * S;
+    if(!(row[i] > semi_normal_pivot_guard * semi_normal_pivot_guard))
+      return false;
+    row[i] = std::sqrt(row[i]);
+    inverse_diagonal[i] = 1. / row[i];
+    for(std::size_t j = i + 1; j < n; ++j) row[j] *= inverse_diagonal[i];
+    for(std::size_t j = i + 1; j < n; ++j) subtract_multiple(R + j * S, row, row[j], j, n);
+  }
+  for(std::size_t i = 0; i < n; ++i)
+    for(std::size_t j = i; j < n; ++j) Rt[j * S + i] = R[i * S + j];
+  cholesky_solve(R, Rt, inverse_diagonal, n, S, rhs); // scaled solution D^-1 x
+  for(std::size_t j = 0; j < n; ++j) c[j] = rhs[j] * scale[j];
+  return true;
+}
+
+/// The refinement step shared by the semi-normal solvers: `correction` holds M^T r (r = b - M x)
+/// on entry; solves for dx with the factor of semi_normal_factor_and_solve() and adds it to `c`.
+/// Returns false if the correction exceeds semi_normal_correction_guard times the solution.
+template <class Count, class Stride>
+CGAL_WAVEJETS_KERNEL_INLINE bool semi_normal_refine(const double* R, const double* Rt, const double* scale,
+                                                   const double* inverse_diagonal, Count n, Stride S,
+                                                   double* correction, double* c)
+{
+  for(std::size_t j = 0; j < n; ++j) correction[j] *= scale[j];
+  cholesky_solve(R, Rt, inverse_diagonal, n, S, correction);
+  double largest_x = 0., largest_dx = 0.;
+  for(std::size_t j = 0; j < n; ++j)
+  {
+    const double dx = correction[j] * scale[j];
+    c[j] += dx;
+    largest_x = (std::max)(largest_x, std::abs(c[j]));
+    largest_dx = (std::max)(largest_dx, std::abs(dx));
+  }
+  return largest_dx <= semi_normal_correction_guard * largest_x && std::isfinite(largest_x);
 }
 
 /// Corrected semi-normal equations (WAVEJETS_MATH.md section 2, step 3; Bjorck): the Cholesky
@@ -474,51 +535,135 @@ CGAL_WAVEJETS_KERNEL_INLINE bool semi_normal_kernel(double* A, std::size_t rows,
   const double* b = A + n * P;
   // Gram matrix, upper triangle, and M^T b (row i of R: column i's dots with columns i..n-1, then b).
   gram_upper(A, P, n, R, S);
-  for(std::size_t i = 0; i < n; ++i) correction[i] = R[i * S + n]; // column i . b
-  for(std::size_t i = 0; i < n; ++i)
-  {
-    if(!(R[i * S + i] > 0.) || !std::isfinite(R[i * S + i]))
-      return false;
-    scale[i] = 1. / std::sqrt(R[i * S + i]);
-    rhs[i] = correction[i] * scale[i];
-  }
-  // Cholesky of D M^T M D (row-major upper R, overwriting the Gram matrix), right-looking: each
-  // pivot row updates the trailing rows with independent multiply-adds.
-  for(std::size_t i = 0; i < n; ++i)
-    for(std::size_t j = i; j < n; ++j) R[i * S + j] *= scale[i] * scale[j];
-  for(std::size_t i = 0; i < n; ++i)
-  {
-    double* row = R + i * S;
-    if(!(row[i] > semi_normal_pivot_guard * semi_normal_pivot_guard))
-      return false;
-    row[i] = std::sqrt(row[i]);
-    inverse_diagonal[i] = 1. / row[i];
-    for(std::size_t j = i + 1; j < n; ++j) row[j] *= inverse_diagonal[i];
-    for(std::size_t j = i + 1; j < n; ++j) subtract_multiple(R + j * S, row, row[j], j, n);
-  }
-  for(std::size_t i = 0; i < n; ++i)
-    for(std::size_t j = i; j < n; ++j) Rt[j * S + i] = R[i * S + j];
-  cholesky_solve(R, Rt, inverse_diagonal, n, S, rhs); // scaled solution D^-1 x
-  for(std::size_t j = 0; j < n; ++j) c[j] = rhs[j] * scale[j];
+  if(!semi_normal_factor_and_solve(R, Rt, scale, inverse_diagonal, rhs, n, S, c))
+    return false;
   // Refinement: r = b - M x, D M^T r, solve, x += D dx.
   std::memcpy(residual, b, P * sizeof(double));
   for(std::size_t j = 0; j < n; ++j) householder_updates<1>(A + j * P, residual, P, 0, P, c + j);
   column_dots(residual, A, P, 0, n, correction);
-  for(std::size_t j = 0; j < n; ++j) correction[j] *= scale[j];
-  cholesky_solve(R, Rt, inverse_diagonal, n, S, correction);
-  double largest_x = 0., largest_dx = 0.;
-  for(std::size_t j = 0; j < n; ++j)
-  {
-    const double dx = correction[j] * scale[j];
-    c[j] += dx;
-    largest_x = (std::max)(largest_x, std::abs(c[j]));
-    largest_dx = (std::max)(largest_dx, std::abs(dx));
-  }
-  if(!(largest_dx <= semi_normal_correction_guard * largest_x) || !std::isfinite(largest_x))
+  if(!semi_normal_refine(R, Rt, scale, inverse_diagonal, n, S, correction, c))
     return false;
   for(std::size_t j = 0; j < n; ++j) // R of M: D^-1-scaled columns of the scaled factor
     for(std::size_t i = 0; i <= j; ++i) A[j * P + i] = R[i * S + j] / scale[j];
   return true;
+}
+
+/// Unknowns of an order-2 Wavejet: 1, x, y, x^2 + y^2, x^2 - y^2, 2 x y (basis.h's columns).
+constexpr std::size_t order2_columns = 6;
+
+/// The order-2 Wavejet least squares min || M c - h || (M's rows: the basis above at (x_l, y_l),
+/// l < L), by the corrected semi-normal equations of semi_normal_kernel() without building M:
+/// M^T M and M^T h are sums of the moments sum x^p y^q (p + q <= 4) and sum x^p y^q h (p + q <= 2),
+/// gathered in one pass over the points; the refinement's residuals re-evaluate the rows in a
+/// second pass. `X` holds three columns x, y, h of stride padded_rows(L), zero on the padding
+/// rows. The same guards as semi_normal_kernel(): false (c undefined) sends the system to the
+/// general solver. Measured in results.md's least-squares table (101 points: the moments against
+/// the QR of the built system).
+CGAL_WAVEJETS_KERNEL_INLINE bool order2_moments_kernel(const double* X, std::size_t L, double* c)
+{
+  // Sizes as types: the factorization and the solves below are compiled for 6 unknowns (unrolled).
+  constexpr std::integral_constant<std::size_t, order2_columns> n{};
+  constexpr std::integral_constant<std::size_t, 8> S{};
+  if(L < n)
+    return false;
+  const std::size_t P = padded_rows(L);
+  const double* x = X;
+  const double* y = X + P;
+  const double* h = X + 2 * P;
+  const Double4 zero = {0., 0., 0., 0.};
+  // Moments: m[0..13] = sum x^p y^q, named x1, y1, ..., y4 below; t[0..5] = sum x^p y^q h for
+  // x^p y^q = 1, x, y, x^2, xy, y^2. Three passes over the points, so that each pass's accumulators
+  // stay in registers.
+  Double4 m[14], t[6];
+  for(Double4& a : m) a = zero;
+  for(Double4& a : t) a = zero;
+  for(std::size_t l = 0; l < P; l += 4)
+  {
+    Double4 xv, yv;
+    load4(xv, x + l);
+    load4(yv, y + l);
+    const Double4 xxv = xv * xv, xyv = xv * yv, yyv = yv * yv;
+    m[0] += xv;         m[1] += yv;
+    m[2] += xxv;        m[3] += xyv;         m[4] += yyv;
+    m[5] += xxv * xv;   m[6] += xxv * yv;    m[7] += yyv * xv;    m[8] += yyv * yv;
+  }
+  for(std::size_t l = 0; l < P; l += 4)
+  {
+    Double4 xv, yv;
+    load4(xv, x + l);
+    load4(yv, y + l);
+    const Double4 xxv = xv * xv, xyv = xv * yv, yyv = yv * yv;
+    m[9] += xxv * xxv;  m[10] += xxv * xyv;  m[11] += xxv * yyv;  m[12] += yyv * xyv;  m[13] += yyv * yyv;
+  }
+  for(std::size_t l = 0; l < P; l += 4)
+  {
+    Double4 xv, yv, hv;
+    load4(xv, x + l);
+    load4(yv, y + l);
+    load4(hv, h + l);
+    t[0] += hv;                t[1] += xv * hv;           t[2] += yv * hv;
+    t[3] += (xv * xv) * hv;    t[4] += (xv * yv) * hv;    t[5] += (yv * yv) * hv;
+  }
+  double s[14], th[6];
+  for(int i = 0; i < 14; ++i) s[i] = reduce4(m[i]);
+  for(int i = 0; i < 6; ++i) th[i] = reduce4(t[i]);
+  const double x1 = s[0], y1 = s[1], x2 = s[2], xy = s[3], y2 = s[4], x3 = s[5], x2y = s[6], xy2 = s[7],
+               y3 = s[8], x4 = s[9], x3y = s[10], x2y2 = s[11], xy3 = s[12], y4 = s[13];
+  // Gram matrix of the columns (1, x, y, x^2 + y^2, x^2 - y^2, 2xy), upper triangle, and M^T h.
+  double R[n * S], Rt[n * S];
+  const double gram[n][n + 1] = {
+    {double(L), x1, y1, x2 + y2, x2 - y2, 2. * xy, th[0]},
+    {0., x2, xy, x3 + xy2, x3 - xy2, 2. * x2y, th[1]},
+    {0., 0., y2, x2y + y3, x2y - y3, 2. * xy2, th[2]},
+    {0., 0., 0., x4 + 2. * x2y2 + y4, x4 - y4, 2. * (x3y + xy3), th[3] + th[5]},
+    {0., 0., 0., 0., x4 - 2. * x2y2 + y4, 2. * (x3y - xy3), th[3] - th[5]},
+    {0., 0., 0., 0., 0., 4. * x2y2, 2. * th[4]}};
+  for(std::size_t i = 0; i < n; ++i)
+    for(std::size_t j = i; j <= n; ++j) R[i * S + j] = gram[i][j];
+  double scale[n], inverse_diagonal[n], rhs[n], correction[n];
+  if(!semi_normal_factor_and_solve(R, Rt, scale, inverse_diagonal, rhs, n, S, c))
+    return false;
+  // Refinement: r = h - M c in a second pass, M^T r, solve, c += dc.
+  const Double4 c0 = zero + c[0], c1 = zero + c[1], c2 = zero + c[2], cxx = zero + (c[3] + c[4]),
+                cyy = zero + (c[3] - c[4]), cxy = zero + 2. * c[5];
+  Double4 u[6];
+  for(Double4& a : u) a = zero;
+  for(std::size_t l = 0; l < P; l += 4)
+  {
+    Double4 xv, yv, r;
+    load4(xv, x + l);
+    load4(yv, y + l);
+    load4(r, h + l);
+    const Double4 xxv = xv * xv, xyv = xv * yv, yyv = yv * yv;
+    r -= c1 * xv;
+    r -= c2 * yv;
+    r -= cxx * xxv;
+    r -= cyy * yyv;
+    r -= cxy * xyv;
+    if(l + 4 <= L)
+      r -= c0;
+    else // the constant column is 1 on the rows l < L only
+    {
+      double lanes[4];
+      for(std::size_t k = 0; k < 4; ++k) lanes[k] = l + k < L ? c[0] : 0.;
+      Double4 ones;
+      load4(ones, lanes);
+      r -= ones;
+    }
+    u[0] += r;
+    u[1] += xv * r;
+    u[2] += yv * r;
+    u[3] += xxv * r;
+    u[4] += xyv * r;
+    u[5] += yyv * r;
+  }
+  correction[0] = reduce4(u[0]);
+  correction[1] = reduce4(u[1]);
+  correction[2] = reduce4(u[2]);
+  correction[3] = reduce4(u[3]) + reduce4(u[5]);
+  correction[4] = reduce4(u[3]) - reduce4(u[5]);
+  correction[5] = 2. * reduce4(u[4]);
+  return semi_normal_refine(R, Rt, scale, inverse_diagonal, n, S, correction, c);
 }
 
 /// Fewest unknowns for which least_squares_kernel() tries the semi-normal equations: 21 (order 5).
@@ -552,14 +697,20 @@ constexpr bool avx_dispatch = false;
 enum class Solver
 {
   HOUSEHOLDER_QR,         ///< householder_kernel() only
-  SEMI_NORMAL_ELSE_QR     ///< least_squares_kernel(): the guarded semi-normal equations, else the QR
+  SEMI_NORMAL_ELSE_QR,    ///< least_squares_kernel(): the guarded semi-normal equations, else the QR
+  ORDER2_MOMENTS          ///< order2_moments_kernel(): A holds the columns x, y, h; cols and scratch unused
 };
 
 template <Solver S>
 CGAL_WAVEJETS_KERNEL_INLINE bool solver_kernel(double* A, std::size_t rows, std::size_t cols, double* scratch, double* c)
 {
-  return S == Solver::HOUSEHOLDER_QR ? householder_kernel(A, rows, cols, scratch, c)
-                                     : least_squares_kernel(A, rows, cols, scratch, c);
+  switch(S)
+  {
+  case Solver::HOUSEHOLDER_QR: return householder_kernel(A, rows, cols, scratch, c);
+  case Solver::SEMI_NORMAL_ELSE_QR: return least_squares_kernel(A, rows, cols, scratch, c);
+  case Solver::ORDER2_MOMENTS: return order2_moments_kernel(A, rows, c);
+  }
+  return false;
 }
 
 /// The kernel compiled for AVX2 + FMA (run it only where the processor has both).
@@ -621,6 +772,14 @@ inline bool least_squares(double* A, std::size_t rows, std::size_t cols, double*
 #else
   return dispatch_solver<Solver::SEMI_NORMAL_ELSE_QR>(A, rows, cols, scratch, c);
 #endif
+}
+
+/// The order-2 Wavejet fit of the points (x_l, y_l, h_l), l < L, by order2_moments_kernel():
+/// `X` holds the columns x, y, h (stride padded_rows(L), zero padding rows). Returns false when
+/// its guards refuse the system: then build M and call least_squares().
+inline bool order2_least_squares(double* X, std::size_t L, double* c)
+{
+  return dispatch_solver<Solver::ORDER2_MOMENTS>(X, L, order2_columns, nullptr, c);
 }
 
 } // namespace internal
