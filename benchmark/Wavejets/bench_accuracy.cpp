@@ -160,7 +160,7 @@ static Neighborhoods gather(const Dataset& d, double radius)
   for(std::size_t b = 0; b < d.eval.size(); b += 64) chunks.push_back(b);
   CGAL::for_each<Tag>(chunks, [&](std::size_t b) -> bool {
     std::vector<std::size_t> nb;
-    std::vector<std::pair<double, std::size_t> > scratch;
+    Q::Scratch scratch;
     for(std::size_t e = b; e < std::min(b + 64, d.eval.size()); ++e)
     {
       const std::size_t i = d.eval[e];
@@ -381,7 +381,7 @@ static std::vector<Point> cgal_jet_smooth(const std::vector<Point>& in, std::siz
   for(std::size_t b = 0; b < in.size(); b += 256) chunks.push_back(b);
   CGAL::for_each<Tag>(chunks, [&](std::size_t b) -> bool {
     std::vector<std::size_t> nb;
-    std::vector<std::pair<double, std::size_t> > scratch;
+    Q::Scratch scratch;
     std::vector<Point> v;
     Monge_fitting monge;
     for(std::size_t i = b; i < std::min(b + 256, in.size()); ++i)

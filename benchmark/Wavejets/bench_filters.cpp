@@ -252,7 +252,7 @@ static std::vector<Vector> mean_curvature_motion(const Sample& s, std::size_t K)
   std::vector<Vector> motion(pts.size(), CGAL::NULL_VECTOR);
   CGAL::Monge_via_jet_fitting<Kernel> monge;
   std::vector<std::size_t> nb;
-  std::vector<std::pair<double, std::size_t> > scratch;
+  Query::Scratch scratch;
   std::vector<Point> hood;
   for(std::size_t i = 0; i < pts.size(); ++i)
   {

@@ -178,7 +178,7 @@ static void gather(Dataset& d, unsigned int k)
   for(std::size_t b = 0; b < N; b += 256) chunks.push_back(b);
   CGAL::for_each<Tag>(chunks, [&](std::size_t b) -> bool {
     std::vector<std::size_t> nb;
-    std::vector<std::pair<double, std::size_t> > scratch;
+    Q::Scratch scratch;
     for(std::size_t i = b; i < std::min(b + 256, N); ++i)
     {
       query.neighbors(i, k, 0., nb, scratch);
@@ -197,7 +197,7 @@ static void gather(Dataset& d, unsigned int k)
   });
   for(std::size_t e = 0; e < d.eval.size(); ++e)
   {
-    std::vector<std::pair<double, std::size_t> > scratch;
+    Q::Scratch scratch;
     std::vector<std::size_t> nb;
     query.neighbors(d.eval[e], k, 0., nb, scratch);
     d.hoods[e].assign(1, d.eval[e]);

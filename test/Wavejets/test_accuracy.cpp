@@ -200,7 +200,7 @@ static void test_small_benchmark()
       WB::Error_accumulator wj, cg, pca;
       CGAL::Monge_via_jet_fitting<Kernel> monge;
       std::vector<std::size_t> nb;
-      std::vector<std::pair<double, std::size_t> > scratch;
+      Q::Scratch scratch;
       for(std::size_t i = 0; i < pts.size(); i += 5)
       {
         const WB::Truth& t = s[i].truth;

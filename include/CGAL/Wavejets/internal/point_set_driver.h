@@ -370,7 +370,7 @@ Driver_run fit_each_point(const Input& input, const Driver_settings& settings, c
     Fitter fitter;
     Fit_result fit;
     std::vector<std::size_t> neighbors;
-    std::vector<std::pair<double, std::size_t> > scratch;
+    Neighbor_query::Scratch scratch;
     std::vector<Eigen::Vector3d> offsets, normals_of_offsets;
     const std::size_t end = (std::min)(begin + chunk_size, N);
     for(std::size_t position = begin; position < end; ++position)
