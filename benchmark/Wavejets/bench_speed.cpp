@@ -29,6 +29,8 @@
 
 #include <Eigen/Dense>
 
+#include "knn_alternatives.h"
+
 #ifdef CGAL_LINKED_WITH_TBB
 #include <tbb/global_control.h>
 #include <tbb/info.h>
@@ -181,7 +183,7 @@ static double time_knn(const Points& points, unsigned int k)
   std::vector<std::size_t> checksum(chunks.size(), 0);
   CGAL::for_each<Tag>(chunks, [&](std::size_t begin) -> bool {
     std::vector<std::size_t> nb;
-    std::vector<std::pair<double, std::size_t> > scratch;
+    WI::Neighbor_query::Scratch scratch;
     const std::size_t end = (std::min)(begin + 256, points.size());
     for(std::size_t position = begin; position < end; ++position)
     {
@@ -194,6 +196,56 @@ static double time_knn(const Points& points, unsigned int k)
   std::size_t total = 0;
   for(std::size_t c : checksum) total += c;
   if(total != points.size() * std::size_t(k)) std::cerr << "kNN checksum mismatch\n";
+  return t.time();
+}
+
+/// The k-NN lists of every point by one of the alternatives of knn_alternatives.h, sequentially in
+/// the kd-tree's leaf order (the drivers' order), build included; `mismatches`: the points whose list
+/// differs from Neighbor_query's.
+enum class Knn_alternative { BALL_FROM_PREVIOUS, UNIFORM_GRID };
+
+static double time_knn_alternative(const Points& points, unsigned int k, Knn_alternative which, std::size_t& mismatches)
+{
+  std::vector<WI::Neighbor_query::Point> pts;
+  for(const auto& p : points) pts.emplace_back(p.first.x(), p.first.y(), p.first.z());
+  const std::vector<unsigned char> finite(points.size(), 1);
+  const WI::Neighbor_query query(pts, finite);
+  const std::vector<std::size_t> order = query.processing_order();
+  std::vector<std::size_t> reference(points.size() * k), nb;
+  WI::Neighbor_query::Scratch scratch;
+  double mean_kth = 0.; // cell of the grid: the mean k-th neighbor distance of 100 points
+  for(std::size_t i = 0; i < points.size(); ++i)
+  {
+    query.neighbors(i, k, 0., nb, scratch);
+    std::copy(nb.begin(), nb.end(), reference.begin() + i * k);
+    if(i % (points.size() / 100) == 0 && !nb.empty()) mean_kth += std::sqrt(CGAL::squared_distance(pts[i], pts[nb.back()])) / 100.;
+  }
+  mismatches = 0;
+  double radius = 0.;
+  auto check = [&](std::size_t i) {
+    mismatches += nb.size() != k || !std::equal(nb.begin(), nb.end(), reference.begin() + i * k);
+  };
+  CGAL::Real_timer t;
+  t.start();
+  if(which == Knn_alternative::BALL_FROM_PREVIOUS)
+  {
+    const wavejets_bench::Ball_from_previous alternative(pts);
+    for(std::size_t i : alternative.leaf_order())
+    {
+      alternative.neighbors(i, k, radius, nb, scratch);
+      check(i);
+    }
+  }
+  else
+  {
+    const wavejets_bench::Uniform_grid alternative(pts, mean_kth);
+    for(std::size_t i : order)
+    {
+      alternative.neighbors(i, k, radius, nb, scratch);
+      check(i);
+    }
+  }
+  t.stop();
   return t.time();
 }
 
@@ -264,7 +316,7 @@ static double time_fitter(const Points& points, std::size_t m, std::size_t order
   std::vector<Eigen::Vector3d> offsets;
   offsets.reserve(m * (k + 1));
   std::vector<std::size_t> nb;
-  std::vector<std::pair<double, std::size_t> > scratch;
+  WI::Neighbor_query::Scratch scratch;
   const std::size_t step = points.size() / m;
   for(std::size_t q = 0; q < m; ++q)
   {
@@ -370,7 +422,10 @@ struct Targets
 {
   double ratio_k6 = -1., ratio_k2 = -1.;       // CGAL us/point over Wavejets us/point, Sequential_tag
   double fit_k2 = -1., fit_k2_single = -1.;    // us per fit, K 2, k 100
+  double fit_k6 = -1.;                         // us per fit, K 6, k 96
+  double knn_k18_over_fastest = -1., knn_k96_over_fastest = -1.; // Neighbor_query time / fastest way measured
   double enhance_600k = -1.;                   // s, wavejet_enhance_positions K 6 k 96, N = 600000, all threads
+  double enhance_5m = -1., enhance_5m_rss_mb = -1.; // the same at N = 5000000: s, peak MB
   double thread_speedup_min = -1.;             // smallest 2-thread speed-up of the fitting functions
   int threads = 0;
 };
@@ -385,15 +440,19 @@ static std::string targets_table(const Targets& t)
       << (value < 0 ? "-" : (met ? "met" : "**not met**")) << " |\n";
   };
   s << "| target | wanted | measured | |\n|---|---|---:|---|\n";
-  row("wavejet_estimate_normals K 6, k 96 vs jet_estimate_normals degree 6 (seq)", ">= 15x", t.ratio_k6, 1, "x",
-      t.ratio_k6 >= 15.);
-  row("wavejet_estimate_normals K 2, k 18 vs jet_estimate_normals degree 2 (seq)", ">= 2x", t.ratio_k2, 1, "x",
-      t.ratio_k2 >= 2.);
-  row("Fitter::fit, K 2, k 100, default (2 re-fits), per point per thread", "<= 2 us", t.fit_k2, 2, " us", t.fit_k2 <= 2.);
-  row("Fitter::fit, K 2, k 100, one solve (no re-fit), per point per thread", "<= 2 us", t.fit_k2_single, 2, " us",
-      t.fit_k2_single <= 2.);
+  row("wavejet_estimate_normals K 6, k 96 vs jet_estimate_normals degree 6 (seq)", ">= 30x", t.ratio_k6, 1, "x",
+      t.ratio_k6 >= 30.);
+  row("wavejet_estimate_normals K 2, k 18 vs jet_estimate_normals degree 2 (seq)", ">= 5x", t.ratio_k2, 1, "x",
+      t.ratio_k2 >= 5.);
+  row("Fitter::fit, K 2, k 100, default (2 re-fits), per point per thread", "<= 1 us", t.fit_k2, 2, " us", t.fit_k2 <= 1.);
+  row("Fitter::fit, K 6, k 96, default, per point per thread", "<= 6 us", t.fit_k6, 2, " us", t.fit_k6 <= 6.);
+  row("k-NN k 18 (Neighbor_query, seq, tree build included) over the fastest way measured", "<= 1.5x",
+      t.knn_k18_over_fastest, 2, "x", t.knn_k18_over_fastest <= 1.5);
+  row("k-NN k 96, likewise", "<= 1.5x", t.knn_k96_over_fastest, 2, "x", t.knn_k96_over_fastest <= 1.5);
   row("wavejet_enhance_positions K 6, k 96, N = 600000, end to end (" + std::to_string(t.threads) + " threads)",
-      "<= 15 s", t.enhance_600k, 1, " s", t.enhance_600k <= 15.);
+      "<= 6 s", t.enhance_600k, 1, " s", t.enhance_600k <= 6.);
+  row("the same, N = 5000000 (--scaling-max-n 5000000)", "<= 50 s", t.enhance_5m, 1, " s", t.enhance_5m <= 50.);
+  row("the same, N = 5000000, peak memory", "<= 1024 MB", t.enhance_5m_rss_mb, 0, " MB", t.enhance_5m_rss_mb <= 1024.);
   row("2 threads vs 1, smallest speed-up of wavejet_estimate_normals / wavejet_enhance_positions (N = 600000)",
       ">= 1.8x", t.thread_speedup_min, 2, "x", t.thread_speedup_min >= 1.8);
   return s.str();
@@ -420,7 +479,7 @@ static Qr_systems wavejet_systems(const Points& points, std::size_t m, std::size
   S.m = m;
   S.A.assign(m * S.P * (S.cols + 1), 0.);
   std::vector<std::size_t> nb;
-  std::vector<std::pair<double, std::size_t> > scratch;
+  WI::Neighbor_query::Scratch scratch;
   std::vector<double> x(S.P, 0.), y(S.P, 0.); // evaluate_basis_columns() reads the zero padding rows too
   for(std::size_t q = 0; q < m; ++q)
   {
@@ -466,13 +525,40 @@ static std::string qr_comparison_row(const Points& points, std::size_t order, un
     return t.time() * 1e6 / double(m);
   };
   const double us_baseline = time_kernel(&WI::householder_kernel);
-  // The semi-normal solver, and how many systems it left to the QR (its guards).
+  // The solver the fits run, and how many systems its guards left to the QR: at order 2 the moments
+  // (order2_least_squares(), from the columns x, y and b: the fitter builds no other), else
+  // least_squares() (the semi-normal equations from semi_normal_minimum_columns unknowns).
   std::size_t fallbacks = 0;
-  const double us_semi_normal = time_kernel(&WI::least_squares);
-  for(std::size_t q = 0; q < m; ++q)
+  const bool moments = order == 2;
+  std::vector<double, WI::Aligned_allocator<double> > points_xyh(3 * S.P);
+  auto order2_from_columns = [&](const double* A, std::size_t rows, double* solution) {
+    for(int i = 0; i < 3; ++i) // columns x (1), y (2) and b (cols)
+      std::copy(A + (i < 2 ? i + 1 : S.cols) * S.P, A + ((i < 2 ? i + 1 : S.cols) + 1) * S.P, points_xyh.begin() + i * S.P);
+    return WI::order2_least_squares(points_xyh.data(), rows, solution);
+  };
+  double us_semi_normal = 0.;
+  if(moments)
   {
-    std::copy(S.A.begin() + q * size, S.A.begin() + (q + 1) * size, work.begin());
-    fallbacks += !WI::semi_normal_kernel(work.data(), S.rows, S.cols, v.data(), c.data());
+    CGAL::Real_timer t;
+    t.start();
+    for(std::size_t q = 0; q < m; ++q)
+      if(!order2_from_columns(S.A.data() + q * size, S.rows, mine.data() + q * S.cols))
+      { // as the fitter does: build the system and solve it with least_squares()
+        ++fallbacks;
+        std::copy(S.A.begin() + q * size, S.A.begin() + (q + 1) * size, work.begin());
+        WI::least_squares(work.data(), S.rows, S.cols, v.data(), mine.data() + q * S.cols);
+      }
+    t.stop();
+    us_semi_normal = t.time() * 1e6 / double(m);
+  }
+  else
+  {
+    us_semi_normal = time_kernel(&WI::least_squares);
+    for(std::size_t q = 0; q < m; ++q)
+    {
+      std::copy(S.A.begin() + q * size, S.A.begin() + (q + 1) * size, work.begin());
+      fallbacks += !WI::semi_normal_kernel(work.data(), S.rows, S.cols, v.data(), c.data());
+    }
   }
   // Largest difference between the solutions `a` and `reference` of one system, relative to the
   // reference's largest coefficient, over the m systems.
@@ -521,7 +607,7 @@ static std::string qr_comparison_table(const Points& points)
 {
   std::string table = "| K | k | system | systems | hand-written QR, dispatch (us) | baseline kernel (us) | "
                       "Eigen HouseholderQR (us) | gain (dispatch) | gain (baseline) | max relative difference | "
-                      "least_squares(), dispatch (us): the QR up to K 4, the semi-normal equations from K 5 | its gain over the QR | systems the semi-normal guards refuse | its max relative "
+                      "the fits' solver, dispatch (us): K 2 from the moments, the QR at K 3 and 4, the semi-normal equations from K 5 | its gain over the QR | systems its guards refuse (solved by the QR) | its max relative "
                       "difference to the QR |\n"
                       "|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for(const std::pair<std::size_t, unsigned int>& c : {std::make_pair(std::size_t(2), 18u), std::make_pair(std::size_t(2), 100u),
@@ -560,6 +646,25 @@ static void run_speed(const Options& o, std::vector<Row>& rows, std::vector<std:
     add(name, "par", T, input.size(), time_knn<CGAL::Parallel_tag>(input, k));
 #endif
   }
+  // The same lists by other means (knn_alternatives.h), sequential, build included.
+  for(unsigned int k : {18u, 96u})
+  {
+    const double ours = time_knn<CGAL::Sequential_tag>(input, k);
+    double fastest = ours;
+    for(Knn_alternative which : {Knn_alternative::BALL_FROM_PREVIOUS, Knn_alternative::UNIFORM_GRID})
+    {
+      std::size_t mismatches = 0;
+      const double s = time_knn_alternative(input, k, which, mismatches);
+      const std::string name = std::string("kNN alternative, ") +
+                               (which == Knn_alternative::UNIFORM_GRID ? "uniform grid" : "CGAL sphere from the previous radius") +
+                               ", k " + std::to_string(k);
+      add(name, "seq", 1, input.size(), s);
+      notes.push_back(name + ": " + std::to_string(mismatches) + " of " + std::to_string(input.size()) +
+                      " neighbor lists differ from Neighbor_query's");
+      fastest = (std::min)(fastest, s);
+    }
+    (k == 96 ? targets.knn_k96_over_fastest : targets.knn_k18_over_fastest) = ours / fastest;
+  }
 
   // Fitting core alone
   {
@@ -570,6 +675,7 @@ static void run_speed(const Options& o, std::vector<Row>& rows, std::vector<std:
         time_fitter(input, m, 2, 100, 0));
     targets.fit_k2_single = rows.back().us();
     add("Fitter::fit only, K 6, k 96 (1 thread)", "seq", 1, input.size(), time_fitter(input, m, 6, 96));
+    targets.fit_k6 = rows.back().us();
     notes.push_back("`Fitter::fit only`: the fitting core on " + std::to_string(m) +
                     " pre-gathered neighborhoods (k-NN not timed), one thread, scaled to us/point; default "
                     "options (PCA frame, least squares, 2 tangent-plane re-fits: 3 solves), or `no re-fit` "
@@ -740,6 +846,11 @@ static std::string run_scaling(const Options& o, std::vector<std::string>& notes
       const bool enh = std::string(fn) == "enhance";
       if(!run_child(o, fn, n, enh ? 6 : 2, enh ? 96 : 18, T, r)) continue;
       if(enh && n == 600000) targets.enhance_600k = r.seconds;
+      if(enh && n == 5000000)
+      {
+        targets.enhance_5m = r.seconds;
+        targets.enhance_5m_rss_mb = r.rss_mb;
+      }
       s << "| " << (enh ? "wavejet_enhance_positions" : "wavejet_estimate_normals") << " | " << r.order << " | "
           << r.k << " | " << n << " | " << fmt(r.seconds, 2) << " | " << fmt(1e6 * r.seconds / n, 2) << " | "
           << fmt(r.rss_mb, 0) << " | " << fmt(r.rss_mb * 1048576. / n, 0) << " |\n";
