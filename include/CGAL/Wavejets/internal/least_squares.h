@@ -43,8 +43,8 @@
 // installation section; define them before including any header of the package):
 //   CGAL_WAVEJETS_NO_AVX_DISPATCH        baseline code only (no run-time dispatch);
 //   CGAL_WAVEJETS_NO_FMA_DISPATCH        keep only the AVX variant (results bitwise equal to baseline);
-//   CGAL_WAVEJETS_NO_SEMI_NORMAL         every system solved by the Householder QR (the results of the
-//                                        versions before the semi-normal solver, bit for bit);
+//   CGAL_WAVEJETS_NO_SEMI_NORMAL         every system built and solved by the Householder QR (also the
+//                                        order-2 fits, which are otherwise solved from their moments);
 //   CGAL_WAVEJETS_NO_VECTOR_EXTENSIONS   the kernels' four-lane type is a plain struct instead of the
 //                                        GCC/Clang vector extension (what other compilers get): same
 //                                        arithmetic per lane, so bitwise the same results.
