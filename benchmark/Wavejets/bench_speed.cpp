@@ -213,12 +213,19 @@ static double time_knn_alternative(const Points& points, unsigned int k, Knn_alt
   const std::vector<std::size_t> order = query.processing_order();
   std::vector<std::size_t> reference(points.size() * k), nb;
   WI::Neighbor_query::Scratch scratch;
-  double mean_kth = 0.; // cell of the grid: the mean k-th neighbor distance of 100 points
+  // Cell of the grid: the mean k-th neighbor distance of about 100 points (every step-th).
+  const std::size_t step = (std::max<std::size_t>)(points.size() / 100, 1);
+  double sum_kth = 0.;
+  std::size_t sampled = 0;
   for(std::size_t i = 0; i < points.size(); ++i)
   {
     query.neighbors(i, k, 0., nb, scratch);
     std::copy(nb.begin(), nb.end(), reference.begin() + i * k);
-    if(i % (points.size() / 100) == 0 && !nb.empty()) mean_kth += std::sqrt(CGAL::squared_distance(pts[i], pts[nb.back()])) / 100.;
+    if(i % step == 0 && !nb.empty())
+    {
+      sum_kth += std::sqrt(CGAL::squared_distance(pts[i], pts[nb.back()]));
+      ++sampled;
+    }
   }
   mismatches = 0;
   double radius = 0.;
@@ -238,7 +245,7 @@ static double time_knn_alternative(const Points& points, unsigned int k, Knn_alt
   }
   else
   {
-    const wavejets_bench::Uniform_grid alternative(pts, mean_kth);
+    const wavejets_bench::Uniform_grid alternative(pts, sum_kth / double((std::max<std::size_t>)(sampled, 1)));
     for(std::size_t i : order)
     {
       alternative.neighbors(i, k, radius, nb, scratch);
@@ -532,8 +539,9 @@ static std::string qr_comparison_row(const Points& points, std::size_t order, un
   const bool moments = order == 2;
   std::vector<double, WI::Aligned_allocator<double> > points_xyh(3 * S.P);
   auto order2_from_columns = [&](const double* A, std::size_t rows, double* solution) {
-    for(int i = 0; i < 3; ++i) // columns x (1), y (2) and b (cols)
-      std::copy(A + (i < 2 ? i + 1 : S.cols) * S.P, A + ((i < 2 ? i + 1 : S.cols) + 1) * S.P, points_xyh.begin() + i * S.P);
+    const std::size_t columns[3] = {1, 2, S.cols}; // x, y and b
+    for(std::size_t i = 0; i < 3; ++i)
+      std::copy(A + columns[i] * S.P, A + (columns[i] + 1) * S.P, points_xyh.begin() + i * S.P);
     return WI::order2_least_squares(points_xyh.data(), rows, solution);
   };
   double us_semi_normal = 0.;

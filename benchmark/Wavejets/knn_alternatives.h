@@ -143,7 +143,7 @@ public:
         lo[a] = (std::min)(lo[a], p[a]);
         hi[a] = (std::max)(hi[a], p[a]);
       }
-    m_inverse_cell = 1. / cell;
+    m_inverse_cell = cell > 0. && std::isfinite(cell) ? 1. / cell : 1.; // all points equal: any cell
     for(int a = 0; a < 3; ++a)
     {
       m_origin[a] = lo[a];
