@@ -10,10 +10,16 @@
 #ifndef WAVEJETS_BENCH_KNN_ALTERNATIVES_H
 #define WAVEJETS_BENCH_KNN_ALTERNATIVES_H
 
-// Benchmark only: two other ways to get the neighbor lists of CGAL::Wavejets::internal::Neighbor_query
+// Benchmark only: three other ways to get the neighbor lists of CGAL::Wavejets::internal::Neighbor_query
 // (the k nearest of point i, i excluded, nearest first, ties by index), to measure how far the
-// package's k-NN search is from the fastest one found (bench_speed's k-NN table). Both are exact:
-// they collect every point of a ball that holds at least k others, then select and sort.
+// package's k-NN search is from the fastest one found (bench_speed's k-NN table).
+//   Cgal_k_neighbor_search: CGAL's kd-tree (sliding midpoint, 24 points per leaf) and
+//     Orthogonal_k_neighbor_search for k + 1 points, the query dropped, sorted by (distance, index):
+//     the package's search before its own kd-tree (kd_tree.h). Where several points tie at the
+//     k-th distance, CGAL keeps any of them, not the smallest indices (on a regular grid its lists
+//     differ; on a random sample they do not).
+// The next two are exact: they collect every point of a ball that holds at least k others, then
+// select and sort.
 //   Ball_from_previous: CGAL's kd-tree as the package builds it, searched with a sphere of 1.15
 //     times the previous query's k-th distance (the queries come in the kd-tree's leaf order, so
 //     the previous point is close), grown by 1.5 until it holds k points.
@@ -27,6 +33,7 @@
 #include <CGAL/Search_traits_3.h>
 #include <CGAL/Search_traits_adapter.h>
 #include <CGAL/Fuzzy_sphere.h>
+#include <CGAL/Orthogonal_k_neighbor_search.h>
 #include <CGAL/Kd_tree.h>
 #include <CGAL/property_map.h>
 
@@ -45,7 +52,7 @@ typedef CGAL::Simple_cartesian<double>::Point_3 Knn_point;
 // The package's neighbor record and its order (distance, then index), so that the selection and
 // the sort below cost what they cost in the package.
 typedef CGAL::Wavejets::internal::Neighbor_query Package_query;
-typedef Package_query::Scratch Knn_candidates;
+typedef std::vector<Package_query::Candidate> Knn_candidates;
 
 /// The k first of the candidates, by distance then index, into `out`.
 inline void select_nearest(Knn_candidates& candidates, unsigned int k, std::vector<std::size_t>& out)
@@ -58,13 +65,65 @@ inline void select_nearest(Knn_candidates& candidates, unsigned int k, std::vect
   for(std::size_t j = 0; j < count; ++j) out.push_back(Package_query::index_of(candidates[j]));
 }
 
-class Ball_from_previous
+/// CGAL's kd-tree over all the points as the package built it before kd_tree.h (sliding midpoint,
+/// 24 points per leaf, coordinates cached), shared by the two CGAL searches below.
+class Cgal_tree
 {
+protected:
   typedef CGAL::Search_traits_3<CGAL::Simple_cartesian<double> > Base_traits;
   typedef CGAL::Pointer_property_map<Knn_point>::const_type Index_map;
   typedef CGAL::Search_traits_adapter<std::size_t, Index_map, Base_traits> Traits;
   typedef CGAL::Sliding_midpoint<Traits> Splitter;
   typedef CGAL::Kd_tree<Traits, Splitter, CGAL::Tag_true, CGAL::Tag_true> Tree;
+
+public:
+  explicit Cgal_tree(const std::vector<Knn_point>& points)
+    : m_points(points), m_map(CGAL::make_property_map(points)), m_traits(m_map), m_tree(Splitter(24), m_traits)
+  {
+    std::vector<std::size_t> indices(points.size());
+    for(std::size_t i = 0; i < points.size(); ++i) indices[i] = i;
+    m_tree.insert(indices.begin(), indices.end());
+    m_tree.build();
+  }
+
+  /// The kd-tree's leaf order.
+  std::vector<std::size_t> leaf_order() const
+  {
+    std::vector<std::size_t> order;
+    m_tree.root()->tree_items(std::back_inserter(order));
+    return order;
+  }
+
+protected:
+  const std::vector<Knn_point>& m_points;
+  Index_map m_map;
+  Traits m_traits;
+  Tree m_tree;
+};
+
+class Cgal_k_neighbor_search : public Cgal_tree
+{
+  typedef CGAL::Distance_adapter<std::size_t, Index_map, CGAL::Euclidean_distance<Base_traits> > Distance;
+  typedef CGAL::Orthogonal_k_neighbor_search<Traits, Distance, Splitter, Tree> Knn;
+
+public:
+  explicit Cgal_k_neighbor_search(const std::vector<Knn_point>& points) : Cgal_tree(points), m_distance(m_map) {}
+
+  void neighbors(std::size_t i, unsigned int k, std::vector<std::size_t>& out, Knn_candidates& candidates) const
+  {
+    candidates.clear();
+    Knn search(m_tree, m_points[i], (std::min<std::size_t>)(std::size_t(k) + 1, m_points.size()), 0., true, m_distance, false);
+    for(typename Knn::iterator it = search.begin(); it != search.end(); ++it)
+      if(it->first != i) candidates.push_back(Package_query::candidate(it->second, it->first));
+    select_nearest(candidates, k, out);
+  }
+
+private:
+  Distance m_distance;
+};
+
+class Ball_from_previous : public Cgal_tree
+{
   typedef CGAL::Fuzzy_sphere<Traits> Sphere;
 
   struct Collector
@@ -79,22 +138,7 @@ class Ball_from_previous
   };
 
 public:
-  explicit Ball_from_previous(const std::vector<Knn_point>& points)
-    : m_points(points), m_traits(CGAL::make_property_map(points)), m_tree(Splitter(24), m_traits)
-  {
-    std::vector<std::size_t> indices(points.size());
-    for(std::size_t i = 0; i < points.size(); ++i) indices[i] = i;
-    m_tree.insert(indices.begin(), indices.end());
-    m_tree.build();
-  }
-
-  /// The kd-tree's leaf order (Neighbor_query::processing_order() for finite points).
-  std::vector<std::size_t> leaf_order() const
-  {
-    std::vector<std::size_t> order;
-    m_tree.root()->tree_items(std::back_inserter(order));
-    return order;
-  }
+  explicit Ball_from_previous(const std::vector<Knn_point>& points) : Cgal_tree(points) {}
 
   /// `radius`: the previous query's k-th distance (0 for the first query); updated to this one's.
   void neighbors(std::size_t i, unsigned int k, double& radius, std::vector<std::size_t>& out,
@@ -124,10 +168,6 @@ private:
       r = (std::max)(r, std::sqrt(CGAL::squared_distance(m_points[i], m_points[j])));
     return r > 0. ? r : 1.;
   }
-
-  const std::vector<Knn_point>& m_points;
-  Traits m_traits;
-  Tree m_tree;
 };
 
 class Uniform_grid
