@@ -33,9 +33,7 @@
 
 #include "analytic_surfaces.h"
 
-#ifdef WAVEJETS_HAVE_PONCA
-#include <Ponca/Fitting>
-#endif
+#include "ponca_types.h"
 
 #include <algorithm>
 #include <cmath>
@@ -59,30 +57,6 @@ typedef CGAL::Parallel_if_available_tag Tag;
 namespace WB = wavejets_bench;
 namespace WP = CGAL::Wavejets::parameters;
 
-#ifdef WAVEJETS_HAVE_PONCA
-/// Ponca's point type: position and normal.
-struct Ponca_point
-{
-  enum { Dim = 3 };
-  typedef double Scalar;
-  typedef Eigen::Matrix<Scalar, Dim, 1> VectorType;
-  typedef Eigen::Matrix<Scalar, Dim, Dim> MatrixType;
-  PONCA_MULTIARCH inline Ponca_point(const VectorType& p = VectorType::Zero(), const VectorType& n = VectorType::Zero())
-    : m_pos(p), m_normal(n)
-  {}
-  PONCA_MULTIARCH inline const VectorType& pos() const { return m_pos; }
-  PONCA_MULTIARCH inline const VectorType& normal() const { return m_normal; }
-  VectorType m_pos, m_normal;
-};
-typedef Ponca::DistWeightFunc<Ponca_point, Ponca::ConstantWeightKernel<double> > Constant_weight;
-typedef Ponca::DistWeightFunc<Ponca_point, Ponca::SmoothWeightKernel<double> > Smooth_weight;
-typedef Ponca::Basket<Ponca_point, Constant_weight, Ponca::OrientedSphereFit, Ponca::GLSParam> APSS_constant;
-typedef Ponca::Basket<Ponca_point, Smooth_weight, Ponca::OrientedSphereFit, Ponca::GLSParam> APSS_smooth;
-typedef Ponca::BasketDiff<Ponca::Basket<Ponca_point, Smooth_weight, Ponca::OrientedSphereFit>, Ponca::FitSpaceDer,
-                          Ponca::OrientedSphereDer, Ponca::MlsSphereFitDer, Ponca::CurvatureEstimatorDer,
-                          Ponca::NormalDerivativeWeingartenEstimator, Ponca::WeingartenCurvatureEstimatorDer>
-  ASO_smooth;
-#endif
 
 // ---------------------------------------------------------------------------------------------
 // Estimators (columns).

@@ -7,7 +7,8 @@
 //   * CGAL::jet_estimate_normals (degree 2/k 18, 4/k 32, 6/k 96) against
 //     CGAL::wavejet_estimate_normals at the same order and k;
 //   * CGAL::wavejet_estimate_curvatures and CGAL::wavejet_enhance_positions (K = 6);
-//   * the fitting core alone (Fitter::fit on pre-gathered neighborhoods, one thread);
+//   * the fitting core alone (Fitter::fit on pre-gathered neighborhoods, one thread) and, where Ponca
+//     is found (ponca_types.h), Ponca's APSS fit on the same neighborhoods;
 //   * the package's hand-written Householder QR against Eigen's HouseholderQR on the same Wavejet
 //     systems (why the hand-written solver exists);
 // with Sequential_tag and Parallel_tag. A scaling mode re-runs this executable once per
@@ -30,6 +31,7 @@
 #include <Eigen/Dense>
 
 #include "knn_alternatives.h"
+#include "ponca_types.h"
 
 #ifdef CGAL_LINKED_WITH_TBB
 #include <tbb/global_control.h>
@@ -202,7 +204,7 @@ static double time_knn(const Points& points, unsigned int k)
 /// The k-NN lists of every point by one of the alternatives of knn_alternatives.h, sequentially in
 /// the kd-tree's leaf order (the drivers' order), build included; `mismatches`: the points whose list
 /// differs from Neighbor_query's.
-enum class Knn_alternative { BALL_FROM_PREVIOUS, UNIFORM_GRID };
+enum class Knn_alternative { CGAL_K_NEIGHBOR_SEARCH, BALL_FROM_PREVIOUS, UNIFORM_GRID };
 
 static double time_knn_alternative(const Points& points, unsigned int k, Knn_alternative which, std::size_t& mismatches)
 {
@@ -234,12 +236,21 @@ static double time_knn_alternative(const Points& points, unsigned int k, Knn_alt
   };
   CGAL::Real_timer t;
   t.start();
-  if(which == Knn_alternative::BALL_FROM_PREVIOUS)
+  if(which == Knn_alternative::CGAL_K_NEIGHBOR_SEARCH)
+  {
+    const wavejets_bench::Cgal_k_neighbor_search alternative(pts);
+    for(std::size_t i : alternative.leaf_order())
+    {
+      alternative.neighbors(i, k, nb, scratch.candidates);
+      check(i);
+    }
+  }
+  else if(which == Knn_alternative::BALL_FROM_PREVIOUS)
   {
     const wavejets_bench::Ball_from_previous alternative(pts);
     for(std::size_t i : alternative.leaf_order())
     {
-      alternative.neighbors(i, k, radius, nb, scratch);
+      alternative.neighbors(i, k, radius, nb, scratch.candidates);
       check(i);
     }
   }
@@ -248,7 +259,7 @@ static double time_knn_alternative(const Points& points, unsigned int k, Knn_alt
     const wavejets_bench::Uniform_grid alternative(pts, sum_kth / double((std::max<std::size_t>)(sampled, 1)));
     for(std::size_t i : order)
     {
-      alternative.neighbors(i, k, radius, nb, scratch);
+      alternative.neighbors(i, k, radius, nb, scratch.candidates);
       check(i);
     }
   }
@@ -312,26 +323,53 @@ static double time_wavejet_enhance(Points& points, std::size_t order, unsigned i
 }
 
 // The fitting core alone: neighborhoods gathered first (not timed), then Fitter::fit on each.
-static double time_fitter(const Points& points, std::size_t m, std::size_t order, unsigned int k,
-                          std::size_t corrections = 2)
+/// The k-NN neighborhoods of m points spread over the sample (every (N / m)-th), as the fitting-core
+/// rows time them: the centers and, per center, its k neighbors.
+struct Sampled_neighborhoods
 {
+  std::vector<WI::Neighbor_query::Point> points;
+  std::vector<std::size_t> centers, members; // members: k per center
+  unsigned int k = 0;
+};
+
+static Sampled_neighborhoods sample_neighborhoods(const Points& points, std::size_t m, unsigned int k)
+{
+  Sampled_neighborhoods s;
+  s.k = k;
   m = (std::min)(m, points.size());
-  std::vector<WI::Neighbor_query::Point> pts;
-  for(const auto& p : points) pts.emplace_back(p.first.x(), p.first.y(), p.first.z());
+  for(const auto& p : points) s.points.emplace_back(p.first.x(), p.first.y(), p.first.z());
   std::vector<unsigned char> finite(points.size(), 1);
-  const WI::Neighbor_query query(pts, finite);
-  std::vector<Eigen::Vector3d> offsets;
-  offsets.reserve(m * (k + 1));
+  const WI::Neighbor_query query(s.points, finite);
   std::vector<std::size_t> nb;
   WI::Neighbor_query::Scratch scratch;
   const std::size_t step = points.size() / m;
   for(std::size_t q = 0; q < m; ++q)
   {
-    const std::size_t i = q * step;
-    query.neighbors(i, k, 0., nb, scratch);
+    s.centers.push_back(q * step);
+    query.neighbors(q * step, k, 0., nb, scratch);
+    s.members.insert(s.members.end(), nb.begin(), nb.end());
+  }
+  return s;
+}
+
+static double time_fitter(const Points& points, std::size_t m, std::size_t order, unsigned int k,
+                          std::size_t corrections = 2)
+{
+  const Sampled_neighborhoods hoods = sample_neighborhoods(points, m, k);
+  m = hoods.centers.size();
+  const std::vector<WI::Neighbor_query::Point>& pts = hoods.points;
+  std::vector<Eigen::Vector3d> offsets;
+  offsets.reserve(m * (k + 1));
+  for(std::size_t q = 0; q < m; ++q)
+  {
+    const std::size_t i = hoods.centers[q];
     const Eigen::Vector3d p(pts[i].x(), pts[i].y(), pts[i].z());
     offsets.push_back(Eigen::Vector3d::Zero());
-    for(std::size_t j : nb) offsets.push_back(Eigen::Vector3d(pts[j].x(), pts[j].y(), pts[j].z()) - p);
+    for(std::size_t j = q * k; j < (q + 1) * k; ++j)
+    {
+      const WI::Neighbor_query::Point& n = pts[hoods.members[j]];
+      offsets.push_back(Eigen::Vector3d(n.x(), n.y(), n.z()) - p);
+    }
   }
   // The fit settings of the point-set functions (defaults of Fitting_options, as read by the driver).
   CGAL::Wavejets::Fitting_options fitting =
@@ -351,6 +389,63 @@ static double time_fitter(const Points& points, std::size_t m, std::size_t order
   if(!std::isfinite(sum)) std::cerr << "fitter produced NaN\n";
   return t.time() * double(points.size()) / double(m); // reported over N points below
 }
+
+#ifdef WAVEJETS_HAVE_PONCA
+/// Ponca's APSS fit (OrientedSphereFit + GLSParam, constant weights, as bench_ponca_accuracy's APSS
+/// column) on the neighborhoods time_fitter() fits (the center and its k neighbors), one thread:
+/// per neighborhood the radius (the farthest neighbor, as Rf), the fit, kappa and the normal. The
+/// positions and normals are gathered before the timer starts. The normals are the Wavejet normals
+/// of the sample (k 18), each neighbor's flipped to agree with its center's (APSS needs consistently
+/// oriented normals; not timed).
+static double time_apss(const Points& points, std::size_t m, unsigned int k)
+{
+  const Sampled_neighborhoods hoods = sample_neighborhoods(points, m, k);
+  m = hoods.centers.size();
+  Points oriented = points;
+  CGAL::wavejet_estimate_normals<CGAL::Sequential_tag>(oriented, 18, np_maps());
+  auto position = [&](std::size_t i) {
+    return Ponca_point::VectorType(hoods.points[i].x(), hoods.points[i].y(), hoods.points[i].z());
+  };
+  auto normal = [&](std::size_t i) {
+    const Vector& n = oriented[i].second;
+    return Ponca_point::VectorType(n.x(), n.y(), n.z());
+  };
+  std::vector<Ponca_point> gathered;
+  gathered.reserve(m * (k + 1));
+  for(std::size_t q = 0; q < m; ++q)
+  {
+    const std::size_t c = hoods.centers[q];
+    gathered.emplace_back(position(c), normal(c));
+    for(std::size_t j = q * k; j < (q + 1) * k; ++j)
+    {
+      const std::size_t i = hoods.members[j];
+      const double agree = normal(i).dot(normal(c));
+      gathered.emplace_back(position(i), agree < 0. ? Ponca_point::VectorType(-normal(i)) : normal(i));
+    }
+  }
+  double sum = 0.;
+  std::size_t stable = 0;
+  CGAL::Real_timer t;
+  t.start();
+  for(std::size_t q = 0; q < m; ++q)
+  {
+    const Ponca_point* hood = gathered.data() + q * (k + 1);
+    const Ponca_point::VectorType& c = hood[0].pos();
+    double Rf = 0.;
+    for(std::size_t j = 1; j <= k; ++j) Rf = (std::max)(Rf, (hood[j].pos() - c).norm());
+    APSS_constant fit;
+    fit.setNeighborFilter(Constant_weight(c, Rf * (1. + 1e-9) + 1e-300)); // every neighbor inside the kernel
+    if(fit.compute(hood, hood + k + 1) == Ponca::STABLE)
+    {
+      ++stable;
+      sum += fit.kappa() + fit.primitiveGradient(c).normalized().z();
+    }
+  }
+  t.stop();
+  if(!std::isfinite(sum) || stable < m / 2) std::cerr << "APSS: " << stable << " of " << m << " fits stable\n";
+  return t.time() * double(points.size()) / double(m); // reported over N points below
+}
+#endif
 
 // ---------------------------------------------------------------------------------------------
 // Options
@@ -430,6 +525,7 @@ struct Targets
   double ratio_k6 = -1., ratio_k2 = -1.;       // CGAL us/point over Wavejets us/point, Sequential_tag
   double fit_k2 = -1., fit_k2_single = -1.;    // us per fit, K 2, k 100
   double fit_k6 = -1.;                         // us per fit, K 6, k 96
+  double fit_k2_over_apss_50 = -1., fit_k2_over_apss_100 = -1.; // Fitter::fit K 2 over Ponca's APSS, same neighborhoods
   double knn_k18_over_fastest = -1., knn_k96_over_fastest = -1.; // Neighbor_query time / fastest way measured
   double enhance_600k = -1.;                   // s, wavejet_enhance_positions K 6 k 96, N = 600000, all threads
   double enhance_5m = -1., enhance_5m_rss_mb = -1.; // the same at N = 5000000: s, peak MB
@@ -453,6 +549,9 @@ static std::string targets_table(const Targets& t)
       t.ratio_k2 >= 5.);
   row("Fitter::fit, K 2, k 100, default (2 re-fits), per point per thread", "<= 1 us", t.fit_k2, 2, " us", t.fit_k2 <= 1.);
   row("Fitter::fit, K 6, k 96, default, per point per thread", "<= 6 us", t.fit_k6, 2, " us", t.fit_k6 <= 6.);
+  row("Fitter::fit K 2 (default) over Ponca's APSS fit, same neighborhoods, k 50", "<= 3x", t.fit_k2_over_apss_50, 2, "x",
+      t.fit_k2_over_apss_50 <= 3.);
+  row("the same, k 100", "<= 3x", t.fit_k2_over_apss_100, 2, "x", t.fit_k2_over_apss_100 <= 3.);
   row("k-NN k 18 (Neighbor_query, seq, tree build included) over the fastest way measured", "<= 1.5x",
       t.knn_k18_over_fastest, 2, "x", t.knn_k18_over_fastest <= 1.5);
   row("k-NN k 96, likewise", "<= 1.5x", t.knn_k96_over_fastest, 2, "x", t.knn_k96_over_fastest <= 1.5);
@@ -659,12 +758,15 @@ static void run_speed(const Options& o, std::vector<Row>& rows, std::vector<std:
   {
     const double ours = time_knn<CGAL::Sequential_tag>(input, k);
     double fastest = ours;
-    for(Knn_alternative which : {Knn_alternative::BALL_FROM_PREVIOUS, Knn_alternative::UNIFORM_GRID})
+    for(Knn_alternative which :
+        {Knn_alternative::CGAL_K_NEIGHBOR_SEARCH, Knn_alternative::BALL_FROM_PREVIOUS, Knn_alternative::UNIFORM_GRID})
     {
       std::size_t mismatches = 0;
       const double s = time_knn_alternative(input, k, which, mismatches);
       const std::string name = std::string("kNN alternative, ") +
-                               (which == Knn_alternative::UNIFORM_GRID ? "uniform grid" : "CGAL sphere from the previous radius") +
+                               (which == Knn_alternative::UNIFORM_GRID         ? "uniform grid"
+                                : which == Knn_alternative::BALL_FROM_PREVIOUS ? "CGAL sphere from the previous radius"
+                                                                               : "CGAL Orthogonal_k_neighbor_search (the package's before)") +
                                ", k " + std::to_string(k);
       add(name, "seq", 1, input.size(), s);
       notes.push_back(name + ": " + std::to_string(mismatches) + " of " + std::to_string(input.size()) +
@@ -684,6 +786,20 @@ static void run_speed(const Options& o, std::vector<Row>& rows, std::vector<std:
     targets.fit_k2_single = rows.back().us();
     add("Fitter::fit only, K 6, k 96 (1 thread)", "seq", 1, input.size(), time_fitter(input, m, 6, 96));
     targets.fit_k6 = rows.back().us();
+    add("Fitter::fit only, K 2, k 50 (1 thread)", "seq", 1, input.size(), time_fitter(input, m, 2, 50));
+#ifdef WAVEJETS_HAVE_PONCA
+    const double fit_k2_k50 = rows.back().us();
+    add("Ponca APSS fit only, k 50 (1 thread)", "seq", 1, input.size(), time_apss(input, m, 50));
+    targets.fit_k2_over_apss_50 = fit_k2_k50 / rows.back().us();
+    add("Ponca APSS fit only, k 100 (1 thread)", "seq", 1, input.size(), time_apss(input, m, 100));
+    targets.fit_k2_over_apss_100 = targets.fit_k2 / rows.back().us();
+    notes.push_back("`Ponca APSS fit only`: Ponca's OrientedSphereFit + GLSParam, constant weights (bench_ponca_accuracy's "
+                    "APSS), on the neighborhoods of the `Fitter::fit only` rows of the same k (positions and oriented "
+                    "Wavejet normals gathered before timing; the radius loop, the fit, kappa and the normal timed).");
+#else
+    notes.push_back("Ponca was not found when bench_speed was configured: no APSS rows (set WAVEJETS_PONCA_DIR or "
+                    "WAVEJETS_PONCA_TARBALL).");
+#endif
     notes.push_back("`Fitter::fit only`: the fitting core on " + std::to_string(m) +
                     " pre-gathered neighborhoods (k-NN not timed), one thread, scaled to us/point; default "
                     "options (PCA frame, least squares, 2 tangent-plane re-fits: 3 solves), or `no re-fit` "
