@@ -230,6 +230,8 @@ void degenerate_inputs()
     const Neighbor_query query(points, std::vector<unsigned char>(4, 1));
     query.neighbors(0, 10, 0., found, scratch);
     check(found == std::vector<std::size_t>({2, 3, 1}), "k above N: every other point, nearest first");
+    query.neighbors(0, 4000000000u, 0., found, scratch); // must not size anything by k
+    check(found == std::vector<std::size_t>({2, 3, 1}), "k = 4e9: every other point, nearest first");
     query.neighbors(0, 0, 2., found, scratch);
     check(found == std::vector<std::size_t>({2, 3}), "radius 2: the point at exactly distance 2 is included");
   }

@@ -130,6 +130,7 @@ public:
   {
     out.clear();
     if(k == 0 || m_nodes.empty()) return;
+    k = (std::min)(k, m_index.size()); // a larger k finds no more, and would size the scratch by k
     Knn_state state{q, k, exclude, k + (std::max)(k, bucket_size), 0, nullptr, bound};
     out.resize(state.capacity + bucket_size); // a leaf is scanned before the selection
     state.kept = out.data();
