@@ -80,6 +80,16 @@ inline std::size_t candidate_index(const Neighbor_candidate& c) { return c.secon
 inline double candidate_squared_distance(const Neighbor_candidate& c) { return c.first; }
 #endif
 
+/// x^2 + y^2 + z^2 summed in that order: every squared distance of the searches,
+/// to a point or to a box, is this one expression (the exactness argument above relies on it).
+inline double sum_of_squares(double x, double y, double z)
+{
+  double d = x * x;
+  d += y * y;
+  d += z * z;
+  return d;
+}
+
 /// Kd-tree over a subset of a point array; its searches return Neighbor_candidate records.
 class Kd_tree_3
 {
@@ -115,8 +125,6 @@ public:
       m_z[s] = p.z();
     }
   }
-
-  std::size_t size() const { return m_index.size(); }
 
   /// The indices of the tree's points in leaf order (neighbors in space are close in this order).
   const std::vector<std::size_t>& leaf_order() const { return m_index; }
@@ -222,8 +230,8 @@ private:
                      });
     const std::size_t left = id + 1, right = left + node_count(n / 2);
     node.right = right;
-    constexpr std::size_t parallel_grain = 50000; // points below which a subtree is built sequentially
 #ifdef CGAL_LINKED_WITH_TBB
+    constexpr std::size_t parallel_grain = 50000; // points below which a subtree is built sequentially
     if(in_parallel && n > parallel_grain)
     {
       tbb::parallel_invoke([&] { build_node(points, left, begin, middle, true); },
@@ -231,7 +239,6 @@ private:
       return;
     }
 #endif
-    (void)parallel_grain;
     build_node(points, left, begin, middle, in_parallel);
     build_node(points, right, middle, end, in_parallel);
   }
@@ -241,19 +248,12 @@ private:
   {
     double gap[3];
     for(int a = 0; a < 3; ++a) gap[a] = (std::max)((std::max)(node.lo[a] - q[a], q[a] - node.hi[a]), 0.);
-    double d = gap[0] * gap[0];
-    d += gap[1] * gap[1];
-    d += gap[2] * gap[2];
-    return d;
+    return sum_of_squares(gap[0], gap[1], gap[2]);
   }
 
   double squared_distance(const double* q, std::size_t s) const
   {
-    const double dx = q[0] - m_x[s], dy = q[1] - m_y[s], dz = q[2] - m_z[s];
-    double d = dx * dx;
-    d += dy * dy;
-    d += dz * dz;
-    return d;
+    return sum_of_squares(q[0] - m_x[s], q[1] - m_y[s], q[2] - m_z[s]);
   }
 
   void k_nearest(std::size_t id, Knn_state& state) const
@@ -265,14 +265,7 @@ private:
       double distance[bucket_size];
       const double *x = m_x.data() + node.begin, *y = m_y.data() + node.begin, *z = m_z.data() + node.begin;
       const double qx = state.q[0], qy = state.q[1], qz = state.q[2];
-      for(std::size_t j = 0; j < bucket_size; ++j)
-      {
-        const double dx = qx - x[j], dy = qy - y[j], dz = qz - z[j];
-        double d = dx * dx;
-        d += dy * dy;
-        d += dz * dz;
-        distance[j] = d;
-      }
+      for(std::size_t j = 0; j < bucket_size; ++j) distance[j] = sum_of_squares(qx - x[j], qy - y[j], qz - z[j]);
       // Every candidate is written, and counted only if it may enter the result: no branch on it.
       const std::size_t* index = m_index.data() + node.begin;
       const std::size_t n = node.end - node.begin;

@@ -13,10 +13,10 @@
 // Neighborhoods by index over a copy of the positions (double precision): k nearest, all within a
 // radius, or the k nearest within a radius, searched in the package's kd-tree (kd_tree.h: exact,
 // ties broken by index; on 100,000 bunny points, one thread, 1.25x faster than CGAL's kd-tree with
-// Orthogonal_k_neighbor_search at k 18 and 1.8x at k 96, benchmark/Wavejets/results.md). The query point itself is never returned: the
-// caller puts it first, so every fit is centered on its query point (CGAL 5.5.1's
-// jet_smooth_point_set is not, with neighbor_radius). Non-finite points are kept out of the tree.
-// The tree is built in the constructor; queries are const and thread safe.
+// Orthogonal_k_neighbor_search at k 18 and 1.8x at k 96, benchmark/Wavejets/results.md). The query
+// point itself is never returned: the caller puts it first, so every fit is centered on its query
+// point (CGAL 5.5.1's jet_smooth_point_set is not, with neighbor_radius). Non-finite points are kept
+// out of the tree. The tree is built in the constructor; queries are const and thread safe.
 
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/tags.h>
@@ -79,10 +79,8 @@ public:
   {
     std::vector<std::size_t> order = m_tree.leaf_order();
     order.reserve(m_points.size());
-    std::vector<unsigned char> in_tree(m_points.size(), 0);
-    for(std::size_t i : order) in_tree[i] = 1;
     for(std::size_t i = 0; i < m_points.size(); ++i)
-      if(!in_tree[i]) order.push_back(i);
+      if(!m_in_tree[i]) order.push_back(i);
     return order;
   }
 
@@ -103,29 +101,29 @@ public:
     if(radius > 0)
       m_tree.within(q, radius * radius, i, candidates);
     else
-    {
-      m_tree.k_nearest(q, k, i, candidates, bound_from_previous(i, k, scratch));
-      scratch.query = this;
-      scratch.point = i;
-      scratch.k = candidates.size() == k ? k : 0;
-      scratch.kth_distance = 0.;
-    }
+      m_tree.k_nearest(q, k, i, candidates, bound_from_previous(i, k, scratch)); // at most k
     std::size_t count = candidates.size();
-    if(k > 0 && count > k)
+    if(k > 0 && count > k) // a radius search's k nearest
     {
       std::nth_element(candidates.begin(), candidates.begin() + k, candidates.end());
       count = k;
     }
     std::sort(candidates.begin(), candidates.begin() + count);
     for(std::size_t j = 0; j < count; ++j) out.push_back(index_of(candidates[j]));
-    if(radius == 0 && scratch.k > 0)
-      scratch.kth_distance = std::sqrt(candidate_squared_distance(candidates[k - 1]));
+    if(radius == 0) // this search bounds the next one (bound_from_previous())
+    {
+      scratch.query = this;
+      scratch.point = i;
+      scratch.k = count == k ? k : 0;
+      scratch.kth_distance = count == k && k > 0 ? std::sqrt(candidate_squared_distance(candidates[k - 1])) : 0.;
+    }
   }
 
 private:
   // A squared distance holding the k nearest of point i, from the previous k-NN search in
-  // `scratch` (of point j, same k, j in the tree): the ball of radius |p_i - p_j| + d_k(j) around p_i holds the k
-  // neighbors of j and j itself, so at least k points other than i (+infinity if there is none).
+  // `scratch` (of point j, same k, j in the tree): the ball of radius |p_i - p_j| + d_k(j) around
+  // p_i holds the k neighbors of j and j itself, so at least k points other than i (+infinity if
+  // there is none).
   // The margin (1e-12 relative, far above the rounding of these few operations, plus a few
   // subnormals for underflowing distances) keeps every candidate the exact search would take.
   double bound_from_previous(std::size_t i, unsigned int k, const Scratch& scratch) const
