@@ -322,20 +322,17 @@ static double time_wavejet_enhance(Points& points, std::size_t order, unsigned i
   return t.time();
 }
 
-// The fitting core alone: neighborhoods gathered first (not timed), then Fitter::fit on each.
 /// The k-NN neighborhoods of m points spread over the sample (every (N / m)-th), as the fitting-core
 /// rows time them: the centers and, per center, its k neighbors.
 struct Sampled_neighborhoods
 {
   std::vector<WI::Neighbor_query::Point> points;
   std::vector<std::size_t> centers, members; // members: k per center
-  unsigned int k = 0;
 };
 
 static Sampled_neighborhoods sample_neighborhoods(const Points& points, std::size_t m, unsigned int k)
 {
   Sampled_neighborhoods s;
-  s.k = k;
   m = (std::min)(m, points.size());
   for(const auto& p : points) s.points.emplace_back(p.first.x(), p.first.y(), p.first.z());
   std::vector<unsigned char> finite(points.size(), 1);
@@ -352,6 +349,7 @@ static Sampled_neighborhoods sample_neighborhoods(const Points& points, std::siz
   return s;
 }
 
+// The fitting core alone: neighborhoods gathered first (not timed), then Fitter::fit on each.
 static double time_fitter(const Points& points, std::size_t m, std::size_t order, unsigned int k,
                           std::size_t corrections = 2)
 {
