@@ -20,6 +20,8 @@
 // i.e. alpha_{k,n} at k(k+1)/2 + n - 1 and beta_{k,n} at k(k+1)/2 + n (n > 0), f_{k,0} at k(k+1)/2,
 // with f_{k,n} = (alpha - i beta)/2 and f_{k,-n} = (alpha + i beta)/2.
 
+#include <CGAL/Wavejets/internal/instruction_sets.h>
+
 #include <complex>
 #include <cstddef>
 #include <cstdlib>
@@ -59,44 +61,54 @@ inline std::complex<double> complex_coefficient(const double* c, int k, int n)
 /// are set to zero. By recurrence along whole columns (vectorizable along the points):
 /// r^k e^{i n theta} = (x^2 + y^2) r^{k-2} e^{i n theta} for n <= k-2, and (x + i y)^k for n = k.
 /// No pow, atan2 or sqrt. (x^2 + y^2 is recomputed per column: measured faster than reading it
-/// from a third array.)
+/// from a third array.) Compiled for AVX where the processor has it (dispatch_avx(): bitwise the
+/// same values).
+struct Basis_columns_kernel
+{
+  static CGAL_WAVEJETS_KERNEL_INLINE void run(const double* x, const double* y, std::size_t L, std::size_t P,
+                                              std::size_t order, double* A)
+  {
+    for(std::size_t l = 0; l < L; ++l) A[l] = 1.;
+    for(std::size_t l = L; l < P; ++l) A[l] = 0.;
+    for(std::size_t k = 1; k <= order; ++k)
+    {
+      const std::size_t o = order_offset(k);
+      if(k >= 2)
+      {
+        const std::size_t o2 = order_offset(k - 2);
+        for(std::size_t j = 0; j + 1 < k; ++j)
+        {
+          const double* below = A + (o2 + j) * P;
+          double* column = A + (o + j) * P;
+          for(std::size_t l = 0; l < L; ++l) column[l] = (x[l] * x[l] + y[l] * y[l]) * below[l];
+          for(std::size_t l = L; l < P; ++l) column[l] = 0.;
+        }
+      }
+      // (x + i y)^k = (x + i y)^{k-1} (x + i y): from the last two columns of order k-1 (for k = 1,
+      // column 0 and zero). Padding rows stay zero (they are zero in those columns; x and y must be
+      // finite there).
+      double* re = A + (o + k - 1) * P;
+      double* im = A + (o + k) * P;
+      if(k == 1)
+      {
+        for(std::size_t l = 0; l < P; ++l) { re[l] = A[l] * x[l]; im[l] = A[l] * y[l]; }
+        continue;
+      }
+      const double* pre = A + (order_offset(k - 1) + k - 2) * P;
+      const double* pim = A + (order_offset(k - 1) + k - 1) * P;
+      for(std::size_t l = 0; l < P; ++l)
+      {
+        re[l] = pre[l] * x[l] - pim[l] * y[l];
+        im[l] = pre[l] * y[l] + pim[l] * x[l];
+      }
+    }
+  }
+};
+
 inline void evaluate_basis_columns(const double* x, const double* y, std::size_t L, std::size_t P,
                                    std::size_t order, double* A)
 {
-  for(std::size_t l = 0; l < L; ++l) A[l] = 1.;
-  for(std::size_t l = L; l < P; ++l) A[l] = 0.;
-  for(std::size_t k = 1; k <= order; ++k)
-  {
-    const std::size_t o = order_offset(k);
-    if(k >= 2)
-    {
-      const std::size_t o2 = order_offset(k - 2);
-      for(std::size_t j = 0; j + 1 < k; ++j)
-      {
-        const double* below = A + (o2 + j) * P;
-        double* column = A + (o + j) * P;
-        for(std::size_t l = 0; l < L; ++l) column[l] = (x[l] * x[l] + y[l] * y[l]) * below[l];
-        for(std::size_t l = L; l < P; ++l) column[l] = 0.;
-      }
-    }
-    // (x + i y)^k = (x + i y)^{k-1} (x + i y): from the last two columns of order k-1 (for k = 1,
-    // column 0 and zero). Padding rows stay zero (they are zero in those columns; x and y must be
-    // finite there).
-    double* re = A + (o + k - 1) * P;
-    double* im = A + (o + k) * P;
-    if(k == 1)
-    {
-      for(std::size_t l = 0; l < P; ++l) { re[l] = A[l] * x[l]; im[l] = A[l] * y[l]; }
-      continue;
-    }
-    const double* pre = A + (order_offset(k - 1) + k - 2) * P;
-    const double* pim = A + (order_offset(k - 1) + k - 1) * P;
-    for(std::size_t l = 0; l < P; ++l)
-    {
-      re[l] = pre[l] * x[l] - pim[l] * y[l];
-      im[l] = pre[l] * y[l] + pim[l] * x[l];
-    }
-  }
+  dispatch_avx<Basis_columns_kernel>(x, y, L, P, order, A);
 }
 
 /// Gradient of the basis at M points: Gx and Gy receive d/dx and d/dy of the B columns of

@@ -50,6 +50,72 @@ inline Eigen::Vector3d graph_normal(const Frame& frame, double fx, double fy)
   return (frame.n - fx * frame.u - fy * frame.v).normalized();
 }
 
+/// The coordinates along three axes of L points stored coordinate by coordinate (x, y, z columns
+/// of stride padded_rows(L) from `coordinates`, zero padding rows): column i of the output (x, y,
+/// h) is the dot product with axes[3i..3i+2], zero on the rows L..P-1. Four rows at a time, all
+/// three outputs in one pass (dispatch_avx(): bitwise the same values in AVX and SSE2).
+struct Projection_kernel
+{
+  static CGAL_WAVEJETS_KERNEL_INLINE void run(const double* coordinates, std::size_t L, std::size_t P,
+                                              const double* axes, double* x, double* y, double* h)
+  {
+    const std::size_t stride = padded_rows(L);
+    const double* sx = coordinates;
+    const double* sy = sx + stride;
+    const double* sz = sy + stride;
+    double* out[3] = {x, y, h};
+    const Double4 zero = {0., 0., 0., 0.};
+    Double4 axis[3][3];
+    for(int i = 0; i < 3; ++i)
+      for(int j = 0; j < 3; ++j) axis[i][j] = zero + axes[3 * i + j];
+    std::size_t l = 0;
+    for(; l + 4 <= L; l += 4)
+    {
+      Double4 a, b, c;
+      load4(a, sx + l);
+      load4(b, sy + l);
+      load4(c, sz + l);
+      for(int i = 0; i < 3; ++i)
+      {
+        Double4 p = a * axis[i][0]; // (a u0 + b u1) + c u2, as in the scalar tail below
+        p += b * axis[i][1];
+        p += c * axis[i][2];
+        store4(out[i] + l, p);
+      }
+    }
+    for(; l < L; ++l)
+      for(int i = 0; i < 3; ++i) out[i][l] = sx[l] * axes[3 * i] + sy[l] * axes[3 * i + 1] + sz[l] * axes[3 * i + 2];
+    for(; l < P; ++l)
+      for(int i = 0; i < 3; ++i) out[i][l] = 0.;
+  }
+};
+
+/// First and second moments of L points stored as in Projection_kernel: sums[0..2] = sum x, y, z
+/// and sums[3..8] = sum xx, xy, xz, yy, yz, zz, each with one partial sum per row residue mod 4
+/// (reduce4()), in one pass (dispatch_avx(): bitwise the same sums in AVX and SSE2).
+struct Moments_kernel
+{
+  static CGAL_WAVEJETS_KERNEL_INLINE void run(const double* coordinates, std::size_t L, double* sums)
+  {
+    const std::size_t P = padded_rows(L);
+    const double* coordinate[3] = {coordinates, coordinates + P, coordinates + 2 * P};
+    const Double4 zero = {0., 0., 0., 0.};
+    Double4 first[3] = {zero, zero, zero}, second[6] = {zero, zero, zero, zero, zero, zero};
+    for(std::size_t l = 0; l < P; l += 4)
+    {
+      Double4 d[3];
+      for(int i = 0; i < 3; ++i) load4(d[i], coordinate[i] + l);
+      for(int i = 0, k = 0; i < 3; ++i)
+      {
+        first[i] += d[i];
+        for(int j = i; j < 3; ++j, ++k) second[k] += d[i] * d[j];
+      }
+    }
+    for(int i = 0; i < 3; ++i) sums[i] = reduce4(first[i]);
+    for(int k = 0; k < 6; ++k) sums[3 + k] = reduce4(second[k]);
+  }
+};
+
 /// Result of Fitter::fit. The coefficients live in the Fitter (see Fitter::coefficients()).
 struct Fit_result
 {
@@ -94,13 +160,18 @@ public:
       return fail(out, Fit_status::TOO_FEW_POINTS);
     if(hint_normal && !hint_normal->allFinite())
       return fail(out, Fit_status::NON_FINITE_INPUT);
-    double max2 = 0.;
+    // One pass without branches: `not_finite` stays 0 unless a coordinate is infinite or NaN
+    // (x - x is NaN exactly then), and max2 is the largest squared norm.
+    double max2 = 0., not_finite = 0.;
     for(std::size_t l = 0; l < L; ++l)
     {
-      if(!offsets[l].allFinite())
-        return fail(out, Fit_status::NON_FINITE_INPUT);
-      max2 = (std::max)(max2, offsets[l].squaredNorm());
+      const Eigen::Vector3d& d = offsets[l];
+      not_finite += (d.x() - d.x()) + (d.y() - d.y()) + (d.z() - d.z());
+      const double d2 = d.squaredNorm();
+      max2 = max2 < d2 ? d2 : max2;
     }
+    if(not_finite != 0.)
+      return fail(out, Fit_status::NON_FINITE_INPUT);
     const std::size_t min_order = (std::min)((std::max)(options.minimum_order, std::size_t(1)), requested_order);
     // Start from the largest order whose (K+1)(K+2)/2 unknowns fit in L points (beta >= 1): an
     // absurd requested order (e.g. 2^40) would overflow number_of_coefficients() and make the
@@ -265,26 +336,14 @@ private:
   {
     // Covariance from the first and second moments, in one pass over the coordinates. The rescaled
     // offsets have norms at most 1: subtracting the mean's square costs about 1e-16 absolute.
-    const std::size_t P = padded_rows(L);
-    const double* coordinate[3] = {scaled_.data(), scaled_.data() + P, scaled_.data() + 2 * P};
-    const Double4 zero = {0., 0., 0., 0.};
-    Double4 first[3] = {zero, zero, zero}, second[6] = {zero, zero, zero, zero, zero, zero};
-    for(std::size_t l = 0; l < P; l += 4)
-    {
-      Double4 d[3];
-      for(int i = 0; i < 3; ++i) load4(d[i], coordinate[i] + l);
-      for(int i = 0, k = 0; i < 3; ++i)
-      {
-        first[i] += d[i];
-        for(int j = i; j < 3; ++j, ++k) second[k] += d[i] * d[j];
-      }
-    }
+    double sums[9];
+    dispatch_avx<Moments_kernel>(static_cast<const double*>(scaled_.data()), L, static_cast<double*>(sums));
     Eigen::Vector3d mean;
     Eigen::Matrix3d cov;
     for(int i = 0, k = 0; i < 3; ++i)
     {
-      mean(i) = reduce4(first[i]) / double(L);
-      for(int j = i; j < 3; ++j, ++k) cov(i, j) = reduce4(second[k]) / double(L);
+      mean(i) = sums[i] / double(L);
+      for(int j = i; j < 3; ++j, ++k) cov(i, j) = sums[3 + k] / double(L);
     }
     for(int i = 0; i < 3; ++i)
       for(int j = i; j < 3; ++j) cov(j, i) = cov(i, j) = cov(i, j) - mean(i) * mean(j);
@@ -353,17 +412,9 @@ private:
   // The same into x, y and h (each with zeros on the rows L..P-1).
   void project_onto_frame(std::size_t L, std::size_t P, const Frame& frame, double* x, double* y, double* h) const
   {
-    const double* sx = scaled_.data();
-    const double* sy = sx + padded_rows(L);
-    const double* sz = sy + padded_rows(L);
-    auto project = [&](const Eigen::Vector3d& axis, double* out) {
-      const double a = axis.x(), b = axis.y(), c = axis.z();
-      for(std::size_t l = 0; l < L; ++l) out[l] = sx[l] * a + sy[l] * b + sz[l] * c;
-      for(std::size_t l = L; l < P; ++l) out[l] = 0.;
-    };
-    project(frame.u, x);
-    project(frame.v, y);
-    project(frame.n, h);
+    const double axes[9] = {frame.u.x(), frame.u.y(), frame.u.z(), frame.v.x(), frame.v.y(),
+                            frame.v.z(), frame.n.x(), frame.n.y(), frame.n.z()};
+    dispatch_avx<Projection_kernel>(scaled_.data(), L, P, static_cast<const double*>(axes), x, y, h);
   }
 
   // Builds the system [A | h] in `frame` (column-major, column stride padded_rows(L), zero

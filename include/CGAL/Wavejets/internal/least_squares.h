@@ -25,6 +25,8 @@
 // vector width the compiler picked: the partial sums and their final reduction are always the
 // same, so the SSE2 and AVX code give bitwise identical results.
 
+#include <CGAL/Wavejets/internal/instruction_sets.h>
+
 #include <boost/align/aligned_allocator.hpp>
 
 #include <algorithm>
@@ -35,28 +37,16 @@
 #include <utility>
 #include <vector>
 
-// x86 with GCC or Clang: the solver is also compiled for AVX (without FMA, so the arithmetic,
-// hence the result, is bitwise the same as the SSE2 code) and for AVX2 with FMA (the compiler fuses
-// multiply-adds, ~1.3x faster; results differ in the last bits from the other two), and the best
-// one the processor supports is picked at run time, the same for every call: results never depend
-// on the thread or on the ConcurrencyTag. The user's opt-out macros (documented in the manual's
-// installation section; define them before including any header of the package):
-//   CGAL_WAVEJETS_NO_AVX_DISPATCH        baseline code only (no run-time dispatch);
+// The solver is also compiled for AVX and for AVX2 with FMA (the compiler fuses multiply-adds,
+// ~1.3x faster; results differ in the last bits from the other two), picked at run time
+// (instruction_sets.h). The user's opt-out macros (documented in the manual's installation
+// section; define them before including any header of the package), besides instruction_sets.h's:
 //   CGAL_WAVEJETS_NO_FMA_DISPATCH        keep only the AVX variant (results bitwise equal to baseline);
 //   CGAL_WAVEJETS_NO_SEMI_NORMAL         every system built and solved by the Householder QR (also the
 //                                        order-2 fits, which are otherwise solved from their moments);
 //   CGAL_WAVEJETS_NO_VECTOR_EXTENSIONS   the kernels' four-lane type is a plain struct instead of the
 //                                        GCC/Clang vector extension (what other compilers get): same
 //                                        arithmetic per lane, so bitwise the same results.
-// The header's own macros (CGAL_WAVEJETS_AVX_DISPATCH, CGAL_WAVEJETS_KERNEL_INLINE,
-// CGAL_WAVEJETS_TARGET) are #undef'd at its end; `avx_dispatch` says whether the dispatch is compiled in.
-#if (defined(__GNUC__) || defined(__clang__)) && (defined(__x86_64__) || defined(__i386__)) && \
-    !defined(CGAL_WAVEJETS_NO_AVX_DISPATCH) && !defined(__FMA__)
-#define CGAL_WAVEJETS_AVX_DISPATCH 1
-#define CGAL_WAVEJETS_KERNEL_INLINE __attribute__((always_inline)) inline
-#else
-#define CGAL_WAVEJETS_KERNEL_INLINE inline
-#endif
 
 namespace CGAL {
 namespace Wavejets {
@@ -683,15 +673,6 @@ CGAL_WAVEJETS_KERNEL_INLINE bool least_squares_kernel(double* A, std::size_t row
          householder_kernel(A, rows, cols, scratch, c);
 }
 
-#ifdef CGAL_WAVEJETS_AVX_DISPATCH
-/// True if `solver_fma()` and `solver_avx()` are compiled for those instruction sets and picked at
-/// run time by `dispatch_solver()` (else they are the baseline code).
-constexpr bool avx_dispatch = true;
-#define CGAL_WAVEJETS_TARGET(instruction_sets) __attribute__((target(instruction_sets)))
-#else
-constexpr bool avx_dispatch = false;
-#define CGAL_WAVEJETS_TARGET(instruction_sets)
-#endif
 
 /// The solvers the dispatch below serves.
 enum class Solver
@@ -736,10 +717,9 @@ inline bool dispatch_solver(double* A, std::size_t rows, std::size_t cols, doubl
 #else
   const bool fma = false;
 #endif
-  static const bool avx = __builtin_cpu_supports("avx");
   if(fma)
     return solver_fma<S>(A, rows, cols, v, c);
-  if(avx)
+  if(processor_runs_avx())
     return solver_avx<S>(A, rows, cols, v, c);
 #endif
   return solver_kernel<S>(A, rows, cols, v, c);
@@ -785,9 +765,5 @@ inline bool order2_least_squares(double* X, std::size_t L, double* c)
 } // namespace internal
 } // namespace Wavejets
 } // namespace CGAL
-
-#undef CGAL_WAVEJETS_TARGET
-#undef CGAL_WAVEJETS_KERNEL_INLINE
-#undef CGAL_WAVEJETS_AVX_DISPATCH
 
 #endif // CGAL_WAVEJETS_INTERNAL_LEAST_SQUARES_H
