@@ -15,6 +15,8 @@
 //     itself;
 //   - its guards hand ill-conditioned systems (nearly dependent columns, nearly collinear
 //     neighborhoods) to the QR: then the result is the QR's, bit for bit.
+// The fit's AVX-only kernels (dispatch_avx(): the basis columns, the projection onto a frame, the
+// PCA moments) give bitwise the baseline's values, and the dispatch runs the AVX clone.
 // A clone the processor cannot run is reported as skipped, never run.
 // The kernels are written once for a four-lane type: the GCC/Clang vector extension, or (built with
 // CGAL_WAVEJETS_NO_VECTOR_EXTENSIONS, as other compilers get) a plain struct: the case
@@ -22,6 +24,7 @@
 // them in the other (see test_portable_build_bitwise()).
 
 #include <CGAL/Wavejets/internal/basis.h>
+#include <CGAL/Wavejets/internal/fitting_core.h>
 #include <CGAL/Wavejets/internal/least_squares.h>
 
 #include <Eigen/Dense>
@@ -458,6 +461,91 @@ static void test_semi_normal_fallback()
                                             std::to_string(qr_solved) + " solved, the others reported rank-deficient)");
 }
 
+// The kernels run through dispatch_avx() (instruction_sets.h): their AVX clone gives bitwise the
+// baseline's values, the dispatch gives the clone's where the processor has AVX, and the values
+// are the right ones (the basis against cos / sin, the projection and moments against Eigen).
+static void test_avx_only_kernels_bitwise()
+{
+  const bool has_avx = processor_has_avx();
+  if(!has_avx)
+    std::cout << "no AVX clone to run (processor or build): the baseline kernels alone are checked" << std::endl;
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> uniform(-1., 1.);
+  bool basis_bitwise = true, projection_bitwise = true, moments_bitwise = true, dispatch_ok = true;
+  double basis_error = 0., projection_error = 0., moments_error = 0.;
+  for(std::size_t L : {std::size_t(1), std::size_t(7), std::size_t(33), std::size_t(97), std::size_t(101)})
+  {
+    const std::size_t P = WI::padded_rows(L);
+    std::vector<double> coordinates(3 * P, 0.);
+    for(std::size_t i = 0; i < 3; ++i)
+      for(std::size_t l = 0; l < L; ++l) coordinates[i * P + l] = uniform(random) / std::sqrt(3.);
+    const double* x = coordinates.data();
+    const double* y = x + P;
+    for(std::size_t order = 1; order <= 8; ++order)
+    {
+      const std::size_t B = WI::number_of_coefficients(order);
+      std::vector<double> base(B * P, -1.), avx(B * P, -2.), dispatched(B * P, -3.);
+      WI::Basis_columns_kernel::run(x, y, L, P, order, base.data());
+      if(has_avx) WI::run_avx<WI::Basis_columns_kernel>(x, y, L, P, order, avx.data());
+      WI::evaluate_basis_columns(x, y, L, P, order, dispatched.data());
+      basis_bitwise = basis_bitwise && (!has_avx || avx == base);
+      dispatch_ok = dispatch_ok && dispatched == (has_avx ? avx : base);
+      for(std::size_t k = 0; k <= order; ++k)
+        for(std::size_t l = 0; l < P; ++l)
+        {
+          const double r = std::hypot(x[l], y[l]), theta = std::atan2(y[l], x[l]), rk = l < L ? std::pow(r, double(k)) : 0.;
+          for(std::size_t n = k % 2; n <= k; n += 2)
+          {
+            const std::size_t column = WI::order_offset(k) + (n == 0 ? 0 : n - 1);
+            basis_error = (std::max)(basis_error, std::abs(base[column * P + l] - rk * std::cos(double(n) * theta)));
+            if(n > 0)
+              basis_error = (std::max)(basis_error, std::abs(base[(column + 1) * P + l] - rk * std::sin(double(n) * theta)));
+          }
+        }
+    }
+    Eigen::Matrix3d axes = Eigen::Quaterniond(uniform(random), uniform(random), uniform(random), uniform(random))
+                             .normalized().toRotationMatrix();
+    const double rows[9] = {axes(0, 0), axes(0, 1), axes(0, 2), axes(1, 0), axes(1, 1), axes(1, 2), axes(2, 0), axes(2, 1), axes(2, 2)};
+    std::vector<double> base(3 * P, -1.), avx(3 * P, -2.), dispatched(3 * P, -3.);
+    WI::Projection_kernel::run(coordinates.data(), L, P, rows, base.data(), base.data() + P, base.data() + 2 * P);
+    if(has_avx) WI::run_avx<WI::Projection_kernel>(static_cast<const double*>(coordinates.data()), L, P,
+                                                    static_cast<const double*>(rows), avx.data(), avx.data() + P, avx.data() + 2 * P);
+    WI::dispatch_avx<WI::Projection_kernel>(static_cast<const double*>(coordinates.data()), L, P,
+                                            static_cast<const double*>(rows), dispatched.data(), dispatched.data() + P,
+                                            dispatched.data() + 2 * P);
+    projection_bitwise = projection_bitwise && (!has_avx || avx == base);
+    dispatch_ok = dispatch_ok && dispatched == (has_avx ? avx : base);
+    for(std::size_t l = 0; l < P; ++l)
+    {
+      const Eigen::Vector3d p(x[l], y[l], coordinates[2 * P + l]), q = axes * p;
+      for(int i = 0; i < 3; ++i) projection_error = (std::max)(projection_error, std::abs(base[i * P + l] - q(i)));
+    }
+    double sums[9], sums_avx[9] = {0.}, sums_dispatched[9];
+    WI::Moments_kernel::run(coordinates.data(), L, sums);
+    if(has_avx) WI::run_avx<WI::Moments_kernel>(static_cast<const double*>(coordinates.data()), L, static_cast<double*>(sums_avx));
+    WI::dispatch_avx<WI::Moments_kernel>(static_cast<const double*>(coordinates.data()), L, static_cast<double*>(sums_dispatched));
+    moments_bitwise = moments_bitwise && (!has_avx || std::memcmp(sums, sums_avx, sizeof sums) == 0);
+    dispatch_ok = dispatch_ok && std::memcmp(sums_dispatched, has_avx ? sums_avx : sums, sizeof sums) == 0;
+    Eigen::MatrixXd X(L, 3);
+    for(std::size_t l = 0; l < L; ++l)
+      for(int i = 0; i < 3; ++i) X(l, i) = coordinates[i * P + l];
+    const Eigen::Vector3d first = X.colwise().sum().transpose();
+    const Eigen::Matrix3d second = X.transpose() * X;
+    for(int i = 0, k = 0; i < 3; ++i)
+    {
+      moments_error = (std::max)(moments_error, std::abs(sums[i] - first(i)));
+      for(int j = i; j < 3; ++j, ++k) moments_error = (std::max)(moments_error, std::abs(sums[3 + k] - second(i, j)));
+    }
+  }
+  check_printed(basis_bitwise, std::string("basis columns, orders 1 to 8: AVX clone == baseline, bitwise") + (has_avx ? "" : " (skipped)"));
+  check_printed(projection_bitwise, std::string("projection onto a frame: AVX clone == baseline, bitwise") + (has_avx ? "" : " (skipped)"));
+  check_printed(moments_bitwise, std::string("PCA moments: AVX clone == baseline, bitwise") + (has_avx ? "" : " (skipped)"));
+  check_printed(dispatch_ok, "dispatch_avx() runs the clone the processor supports (bitwise equal to it)");
+  check_printed(basis_error <= 1e-14, "basis columns against r^k cos / sin (n theta): max error " + sci(basis_error));
+  check_printed(projection_error <= 1e-15, "projection against Eigen's rotation: max error " + sci(projection_error));
+  check_printed(moments_error <= 1e-13, "moments against Eigen's sums: max error " + sci(moments_error));
+}
+
 int main(int argc, char** argv)
 {
   return wavejets_test::run_cases(argc, argv, {
@@ -469,5 +557,6 @@ int main(int argc, char** argv)
     Case{"kernels.semi_normal_falls_back_to_qr", test_semi_normal_fallback},
     Case{"kernels.order2_moments_agree_with_qr_on_wavejet_systems", test_order2_moments_on_wavejet_systems},
     Case{"kernels.portable_build_bitwise", test_portable_build_bitwise},
+    Case{"kernels.avx_only_kernels_bitwise", test_avx_only_kernels_bitwise},
   });
 }
