@@ -404,6 +404,22 @@ CGAL_WAVEJETS_KERNEL_INLINE void subtract_multiple(double* y, const double* x, d
   for(; l < end; ++l) y[l] -= a * x[l];
 }
 
+/// y[l] -= a x[l] for l in [begin, end) (multiples of four), four lanes at a time.
+CGAL_WAVEJETS_KERNEL_INLINE void subtract_multiple_blocks(double* y, const double* x, double a, std::size_t begin,
+                                                         std::size_t end)
+{
+  const Double4 zero = {0., 0., 0., 0.};
+  const Double4 am = zero + a;
+  for(std::size_t l = begin; l < end; l += 4)
+  {
+    Double4 xv, yv;
+    load4(xv, x + l);
+    load4(yv, y + l);
+    yv -= am * xv;
+    store4(y + l, yv);
+  }
+}
+
 /// Solves R^T R x = y in place: R upper triangular n x n, row-major with row stride S in `R` (row
 /// i: R(i, i..n-1)), `Rt` its transpose likewise (row i: R(0..i, i)), `inverse_diagonal` 1 / R(i, i).
 /// Both triangular solves subtract, per unknown, a multiple of a row from the remaining right-hand
@@ -457,9 +473,17 @@ CGAL_WAVEJETS_KERNEL_INLINE bool semi_normal_factor_and_solve(double* R, double*
     rhs[i] = R[i * S + n] * scale[i];
   }
   // Cholesky of D M^T M D (row-major upper R, overwriting the Gram matrix), right-looking: each
-  // pivot row updates the trailing rows with independent multiply-adds.
+  // pivot row updates the trailing rows with independent multiply-adds, over whole blocks of four
+  // columns (from the block of the diagonal to the one of column n - 1): the entries left of the
+  // diagonal and right of column n - 1 in those blocks are set to zero first and are never read,
+  // so the factor is the one the element-wise update gives, bit for bit, with no scalar head or tail.
+  const std::size_t blocks_end = (n + 3) / 4 * 4; // <= S
   for(std::size_t i = 0; i < n; ++i)
+  {
+    for(std::size_t j = i / 4 * 4; j < i; ++j) R[i * S + j] = 0.;
     for(std::size_t j = i; j < n; ++j) R[i * S + j] *= scale[i] * scale[j];
+    for(std::size_t j = n; j < blocks_end; ++j) R[i * S + j] = 0.; // M^T b, read above
+  }
   for(std::size_t i = 0; i < n; ++i)
   {
     double* row = R + i * S;
@@ -468,7 +492,7 @@ CGAL_WAVEJETS_KERNEL_INLINE bool semi_normal_factor_and_solve(double* R, double*
     row[i] = std::sqrt(row[i]);
     inverse_diagonal[i] = 1. / row[i];
     for(std::size_t j = i + 1; j < n; ++j) row[j] *= inverse_diagonal[i];
-    for(std::size_t j = i + 1; j < n; ++j) subtract_multiple(R + j * S, row, row[j], j, n);
+    for(std::size_t j = i + 1; j < n; ++j) subtract_multiple_blocks(R + j * S, row, row[j], j / 4 * 4, blocks_end);
   }
   for(std::size_t i = 0; i < n; ++i)
     for(std::size_t j = i; j < n; ++j) Rt[j * S + i] = R[i * S + j];
