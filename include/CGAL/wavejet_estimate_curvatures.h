@@ -29,6 +29,7 @@ fit, in the PCA frame, which is the same least-squares problem as CGAL's jets).
 Signs are relative to the normal: a surface bending toward the normal has H > 0 (a sphere with
 outward normals has H = -1/R). When a normal map is given, the frames are oriented by its normals;
 otherwise the PCA normal's sign is arbitrary, so the signs of H, k1, k2 are too (K_G is not affected).
+The principal directions are lines: the sign of each unit vector is arbitrary (it follows the PCA frame).
 
 \tparam ConcurrencyTag `Sequential_tag`, `Parallel_tag` or `Parallel_if_available_tag`; both give bitwise identical results.
 \tparam PointRange a model of `Range`.
