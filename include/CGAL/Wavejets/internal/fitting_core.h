@@ -347,13 +347,8 @@ private:
     }
     for(int i = 0; i < 3; ++i)
       for(int j = i; j < 3; ++j) cov(j, i) = cov(i, j) = cov(i, j) - mean(i) * mean(j);
-    // Eigen's closed-form 3 x 3 solver (ascending eigenvalues), as CGAL's Eigen_diagonalize_traits
-    // for its PCA (jet_estimate_normals, Monge_via_jet_fitting): about 4x faster than the
-    // iterative one. Its eigenvectors are accurate to about eps * |cov| / gap; the normal's gap is
-    // the middle eigenvalue, of the order of |cov| on a surface.
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
-    eig.computeDirect(cov);
-    if(eig.info() != Eigen::Success || !eig.eigenvectors().allFinite())
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov); // ascending eigenvalues
+    if(eig.info() != Eigen::Success)
       return false;
     const double s2 = out.radius * out.radius;
     out.pca_values = Eigen::Vector3d(eig.eigenvalues()(2), eig.eigenvalues()(1), eig.eigenvalues()(0)) * s2;
