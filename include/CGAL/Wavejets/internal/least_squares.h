@@ -384,15 +384,14 @@ CGAL_WAVEJETS_KERNEL_INLINE void gram_upper(const double* X, std::size_t P, std:
   if(i < n) column_dots(X + i * P, X, P, i, n + 1, G + i * stride);
 }
 
-/// y[l] -= a x[l] for l in [begin, end): the rows of a triangular factor and the right-hand side
-/// are short, so the whole multiple-of-four part goes through Double4 (the head and the tail lane by
-/// lane, with the same arithmetic).
-CGAL_WAVEJETS_KERNEL_INLINE void subtract_multiple(double* y, const double* x, double a, std::size_t begin, std::size_t end)
+/// y[l] -= a x[l] for l = begin, begin + 1, ... while a whole block of four fits before `end`,
+/// four lanes at a time; returns the first l not done (`end` when end - begin is a multiple of four).
+CGAL_WAVEJETS_KERNEL_INLINE std::size_t subtract_multiple_blocks(double* y, const double* x, double a, std::size_t begin,
+                                                                std::size_t end)
 {
-  std::size_t l = begin;
-  for(; l < end && l % 4 != 0; ++l) y[l] -= a * x[l];
   const Double4 zero = {0., 0., 0., 0.};
   const Double4 am = zero + a;
+  std::size_t l = begin;
   for(; l + 4 <= end; l += 4)
   {
     Double4 xv, yv;
@@ -401,23 +400,17 @@ CGAL_WAVEJETS_KERNEL_INLINE void subtract_multiple(double* y, const double* x, d
     yv -= am * xv;
     store4(y + l, yv);
   }
-  for(; l < end; ++l) y[l] -= a * x[l];
+  return l;
 }
 
-/// y[l] -= a x[l] for l in [begin, end) (multiples of four), four lanes at a time.
-CGAL_WAVEJETS_KERNEL_INLINE void subtract_multiple_blocks(double* y, const double* x, double a, std::size_t begin,
-                                                         std::size_t end)
+/// y[l] -= a x[l] for l in [begin, end): the rows of a triangular factor and the right-hand side
+/// are short, so the whole multiple-of-four part goes through subtract_multiple_blocks() (the head
+/// and the tail lane by lane, with the same arithmetic).
+CGAL_WAVEJETS_KERNEL_INLINE void subtract_multiple(double* y, const double* x, double a, std::size_t begin, std::size_t end)
 {
-  const Double4 zero = {0., 0., 0., 0.};
-  const Double4 am = zero + a;
-  for(std::size_t l = begin; l < end; l += 4)
-  {
-    Double4 xv, yv;
-    load4(xv, x + l);
-    load4(yv, y + l);
-    yv -= am * xv;
-    store4(y + l, yv);
-  }
+  std::size_t l = begin;
+  for(; l < end && l % 4 != 0; ++l) y[l] -= a * x[l];
+  for(l = subtract_multiple_blocks(y, x, a, l, end); l < end; ++l) y[l] -= a * x[l];
 }
 
 /// Solves R^T R x = y in place: R upper triangular n x n, row-major with row stride S in `R` (row
