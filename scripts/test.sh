@@ -4,7 +4,8 @@
 # and install checks) on a build matrix, and prints the time of each leg and the total:
 #   1. g++     + CGAL 5.5 (Debian)  Release, benchmarks built too
 #   2. clang++ + CGAL 6.1.1         Release, benchmarks built too; its results of every public
-#      function are compared with leg 1's to 1e-12 relative (test_public_api_results)
+#      function are compared with leg 1's to 1e-12 relative (test_public_api_results); the
+#      libFuzzer target (not a test) is built in leg 3 only
 #   3. clang++ + CGAL 5.5 (Debian)  AddressSanitizer + UndefinedBehaviorSanitizer, Debug at -O1 (clang++
 #      compiles these CGAL-heavy sanitized translation units about 3x faster than g++: 124 s against
 #      421 s for test_point_set_functions.cpp); without the two compile-only tests of the headers and
@@ -20,8 +21,10 @@ start=$(date +%s)
 bash scripts/install_dependencies.sh
 summary=""
 
-# run_leg NAME BUILD_DIR [cmake arguments...]: configure, build with 2 jobs, run CTest (without the
-# tests matching $ctest_exclude, when set).
+# run_leg NAME BUILD_DIR [cmake arguments...]: configure, build with 2 jobs, run CTest with 2 jobs
+# (without the tests matching $ctest_exclude, when set). The tests write only into their own build
+# folders, and the one ordering they need (test_simd_kernels_portable after test_simd_kernels) is a
+# CTest fixture, so they may run side by side.
 ctest_exclude=""
 run_leg() {
   local name="$1" build="$2"
@@ -32,7 +35,7 @@ run_leg() {
   echo "=================== $name ==================="
   cmake -S . -B "$build" -DBUILD_TESTING=ON -DWAVEJETS_REQUIRE_TBB=ON "$@"
   cmake --build "$build" -j2
-  (cd "$build" && ctest --output-on-failure ${ctest_exclude:+-E "$ctest_exclude"})
+  (cd "$build" && ctest --output-on-failure -j2 ${ctest_exclude:+-E "$ctest_exclude"})
   summary="$summary$(printf '%-55s %4d s' "$name" $(($(date +%s) - leg_start)))"$'\n'
 }
 
@@ -61,6 +64,7 @@ run_leg "1. g++ + CGAL $(dpkg-query -W -f='${Version}' libcgal-dev 2>/dev/null |
 if cgal6=$(find_cgal6); then
   run_leg "2. clang++ + CGAL $(cat "$cgal6/VERSION" 2>/dev/null || echo 6.1.1), Release" "${WAVEJETS_CLANG_BUILD_DIR:-build/clang-cgal6}" \
     -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=clang++ -DCGAL_DIR="$cgal6" -DWAVEJETS_BUILD_BENCHMARKS=ON \
+    -DWAVEJETS_BUILD_LIBFUZZER=OFF \
     -DWAVEJETS_REFERENCE_RESULTS="$root/$gcc_build/test/Wavejets/public_api_results.txt"
 else
   echo

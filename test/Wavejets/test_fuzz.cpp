@@ -13,7 +13,10 @@
 // parameters, empty ranges and NON_FINITE_INPUT rejections are run and checked too, but not
 // counted; the run goes on until the real fits reach the target.
 //
-// Usage: test_fuzz [real_fits [seed]]; or environment WAVEJETS_FUZZ_FITS / WAVEJETS_FUZZ_SEED.
+// Usage: test_fuzz [real_fits [seed]]; or environment WAVEJETS_FUZZ_FITS / WAVEJETS_FUZZ_SEED;
+// or test_fuzz shard I N: shard I (0 <= I < N) of the default run, 1/N of its real fits (rounded
+// up) from seed 20260101 + I (shard 0 is the first 1/N of the unsharded run). CTest runs the
+// default in two shards (test/Wavejets/CMakeLists.txt), so that `ctest -j2` runs them side by side.
 // Default: 1,000,000 real fits (about 1 in 5 through the functions, one per finite point);
 // 100,000 when built with a sanitizer (ASan + UBSan at -O1 run the harness ~10x slower, and the
 // sanitizer build is there to catch memory and UB errors, which 1e5 fits of the same generator
@@ -44,8 +47,23 @@ int main(int argc, char** argv)
   unsigned long long seed = 20260101;
   if(const char* e = std::getenv("WAVEJETS_FUZZ_FITS")) target = std::strtoull(e, nullptr, 10);
   if(const char* e = std::getenv("WAVEJETS_FUZZ_SEED")) seed = std::strtoull(e, nullptr, 10);
-  if(argc > 1) target = std::strtoull(argv[1], nullptr, 10);
-  if(argc > 2) seed = std::strtoull(argv[2], nullptr, 10);
+  if(argc > 1 && std::string(argv[1]) == "shard")
+  {
+    const unsigned long long shard = argc > 2 ? std::strtoull(argv[2], nullptr, 10) : 0;
+    const unsigned long long shards = argc > 3 ? std::strtoull(argv[3], nullptr, 10) : 0;
+    if(argc != 4 || shards == 0 || shard >= shards)
+    {
+      std::cerr << "usage: test_fuzz shard I N (0 <= I < N)" << std::endl;
+      return EXIT_FAILURE;
+    }
+    target = (target + shards - 1) / shards;
+    seed += shard;
+  }
+  else
+  {
+    if(argc > 1) target = std::strtoull(argv[1], nullptr, 10);
+    if(argc > 2) seed = std::strtoull(argv[2], nullptr, 10);
+  }
 
   using namespace wavejets_fuzz;
   Source<Splitmix> s{Splitmix{seed}};
