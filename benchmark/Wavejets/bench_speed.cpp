@@ -349,7 +349,6 @@ static Sampled_neighborhoods sample_neighborhoods(const Points& points, std::siz
   return s;
 }
 
-// The fitting core alone: neighborhoods gathered first (not timed), then Fitter::fit on each.
 /// The smallest of three runs of `run` (a callable returning seconds): for the short timings (a few
 /// hundred milliseconds or less), which the noise of a shared machine would otherwise dominate.
 template <class Run>
@@ -369,8 +368,9 @@ static CGAL::Wavejets::Fitting_options function_fitting(const Points& points, st
   return WI::read_settings(copy, k, WP::order(order, np_maps()), f).fitting;
 }
 
-/// Fitter::fit on m pre-gathered neighborhoods of the k-NN (the center and its k neighbors), with
-/// the settings `fitting`, one thread; returns the time scaled to all the points.
+/// The fitting core alone: Fitter::fit on m neighborhoods of the k-NN (the center and its k
+/// neighbors), gathered first (not timed), with the settings `fitting`, one thread; returns the time
+/// scaled to all the points.
 static double time_fitter(const Points& points, std::size_t m, std::size_t order, unsigned int k,
                           const CGAL::Wavejets::Fitting_options& fitting);
 
