@@ -646,7 +646,7 @@ static std::string qr_comparison_row(const Points& points, std::size_t order, un
   const std::size_t m = (std::min<std::size_t>)(points.size(), 20000);
   const Qr_systems S = wavejet_systems(points, m, order, k);
   const std::size_t size = S.P * (S.cols + 1);
-  std::vector<double, WI::Aligned_allocator<double> > work(size), v(WI::least_squares_scratch_size(S.rows, S.cols));
+  std::vector<double, WI::Aligned_allocator<double> > work(size), v(WI::wavejet_least_squares_scratch_size(S.rows, S.cols));
   std::vector<double> c(S.cols), mine(m * S.cols), eigen(m * S.cols), qr(m * S.cols);
   auto time_kernel = [&](bool (*kernel)(double*, std::size_t, std::size_t, double*, double*)) {
     CGAL::Real_timer t;
@@ -662,7 +662,8 @@ static std::string qr_comparison_row(const Points& points, std::size_t order, un
   const double us_baseline = time_kernel(&WI::householder_kernel);
   // The solver the fits run, and how many systems its guards left to the QR: at order 2 the moments
   // (order2_least_squares(), from the columns x, y and b: the fitter builds no other), else
-  // least_squares() (the semi-normal equations from semi_normal_minimum_columns unknowns).
+  // wavejet_least_squares() (the semi-normal equations from semi_normal_minimum_columns unknowns,
+  // their Gram matrix from polar moments); least_squares() is the same with the Gram matrix dot by dot.
   std::size_t fallbacks = 0;
   const bool moments = order == 2;
   std::vector<double, WI::Aligned_allocator<double> > points_xyh(3 * S.P);
@@ -672,7 +673,7 @@ static std::string qr_comparison_row(const Points& points, std::size_t order, un
       std::copy(A + columns[i] * S.P, A + (columns[i] + 1) * S.P, points_xyh.begin() + i * S.P);
     return WI::order2_least_squares(points_xyh.data(), rows, solution);
   };
-  double us_semi_normal = 0.;
+  double us_semi_normal = 0., us_gram_by_dots = 0.;
   if(moments)
   {
     CGAL::Real_timer t;
@@ -689,11 +690,14 @@ static std::string qr_comparison_row(const Points& points, std::size_t order, un
   }
   else
   {
-    us_semi_normal = time_kernel(&WI::least_squares);
+    us_gram_by_dots = time_kernel(&WI::least_squares);
+    us_semi_normal = time_kernel(&WI::wavejet_least_squares);
+    const bool polar = S.rows >= WI::polar_moment_minimum_rows_per_column * S.cols;
     for(std::size_t q = 0; q < m; ++q)
     {
       std::copy(S.A.begin() + q * size, S.A.begin() + (q + 1) * size, work.begin());
-      fallbacks += !WI::semi_normal_kernel(work.data(), S.rows, S.cols, v.data(), c.data());
+      fallbacks += !(polar ? WI::wavejet_semi_normal_kernel : WI::semi_normal_kernel)(work.data(), S.rows, S.cols,
+                                                                                      v.data(), c.data());
     }
   }
   // Largest difference between the solutions `a` and `reference` of one system, relative to the
@@ -734,8 +738,8 @@ static std::string qr_comparison_row(const Points& points, std::size_t order, un
     << fmt(us_dispatch, 2) << " | " << fmt(us_baseline, 2) << " | " << fmt(us_eigen, 2) << " | "
     << fmt(us_eigen / us_dispatch, 1) << "x | " << fmt(us_eigen / us_baseline, 1) << "x | " << std::scientific
     << std::setprecision(1) << worst << std::defaultfloat << " | " << fmt(us_semi_normal, 2) << " | "
-    << fmt(us_dispatch / us_semi_normal, 1) << "x | " << fallbacks << " | " << std::scientific << std::setprecision(1)
-    << worst_semi_normal << std::defaultfloat << " |\n";
+    << fmt(us_dispatch / us_semi_normal, 1) << "x | " << (moments ? std::string("-") : fmt(us_gram_by_dots, 2)) << " | "
+    << fallbacks << " | " << std::scientific << std::setprecision(1) << worst_semi_normal << std::defaultfloat << " |\n";
   return s.str();
 }
 
@@ -743,9 +747,10 @@ static std::string qr_comparison_table(const Points& points)
 {
   std::string table = "| K | k | system | systems | hand-written QR, dispatch (us) | baseline kernel (us) | "
                       "Eigen HouseholderQR (us) | gain (dispatch) | gain (baseline) | max relative difference | "
-                      "the fits' solver, dispatch (us): K 2 from the moments, the QR at K 3 and 4, the semi-normal equations from K 5 | its gain over the QR | systems its guards refuse (solved by the QR) | its max relative "
-                      "difference to the QR |\n"
-                      "|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+                      "the fits' solver, dispatch (us): K 2 from the moments, the QR at K 3 and 4, the semi-normal equations from K 5 "
+                      "(their Gram matrix from polar moments) | its gain over the QR | the same with the Gram matrix dot by dot (us) | "
+                      "systems its guards refuse (solved by the QR) | its max relative difference to the QR |\n"
+                      "|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for(const std::pair<std::size_t, unsigned int>& c : {std::make_pair(std::size_t(2), 18u), std::make_pair(std::size_t(2), 100u),
                                                        std::make_pair(std::size_t(4), 32u), std::make_pair(std::size_t(6), 96u)})
     table += qr_comparison_row(points, c.first, c.second);
@@ -758,7 +763,7 @@ static std::string qr_comparison_table(const Points& points)
 /// One fit at the full order in a given frame, as the fitting core runs it, on the systems of
 /// wavejet_systems() (m neighborhoods of the k-NN, PCA frame), one thread, in us per fit: the basis
 /// columns built from the points' (x, y) (none at order 2, which is solved from the moments of the
-/// points, order2_least_squares()), and the solve in place (least_squares(); the copy that restores
+/// points, order2_least_squares()), and the solve in place (wavejet_least_squares(); the copy that restores
 /// each system before its solve is timed alone and subtracted).
 struct Final_fit_times
 {
@@ -770,7 +775,7 @@ static Final_fit_times time_final_fit(const Points& points, std::size_t order, u
   const std::size_t m = (std::min<std::size_t>)(points.size(), 20000);
   const Qr_systems S = wavejet_systems(points, m, order, k);
   const std::size_t size = S.P * (S.cols + 1);
-  std::vector<double, WI::Aligned_allocator<double> > work(size), scratch(WI::least_squares_scratch_size(S.rows, S.cols));
+  std::vector<double, WI::Aligned_allocator<double> > work(size), scratch(WI::wavejet_least_squares_scratch_size(S.rows, S.cols));
   std::vector<double, WI::Aligned_allocator<double> > x(S.P), y(S.P), xyh(3 * S.P);
   std::vector<double> c(S.cols);
   double sum = 0.;
@@ -806,7 +811,7 @@ static Final_fit_times time_final_fit(const Points& points, std::size_t order, u
         sum += work[S.P + 1];
       });
     times.solve_us = us_per_system([&](std::size_t q) { std::copy(system(q), system(q) + size, work.begin()); },
-                                   [&] { if(WI::least_squares(work.data(), S.rows, S.cols, scratch.data(), c.data())) sum += c[3]; });
+                                   [&] { if(WI::wavejet_least_squares(work.data(), S.rows, S.cols, scratch.data(), c.data())) sum += c[3]; });
   }
   if(!std::isfinite(sum)) std::cerr << "final fit produced NaN\n";
   return times;

@@ -67,7 +67,7 @@ static bool solve(Kernel kernel, const System& s, std::vector<double>& c)
 {
   const std::size_t P = WI::padded_rows(s.rows);
   std::vector<double, WI::Aligned_allocator<double> > A(P * (s.cols + 1), 0.),
-    v(WI::least_squares_scratch_size(s.rows, s.cols), 0.);
+    v(WI::wavejet_least_squares_scratch_size(s.rows, s.cols), 0.); // >= least_squares_scratch_size()
   for(std::size_t j = 0; j < s.cols; ++j)
     for(std::size_t i = 0; i < s.rows; ++i) A[j * P + i] = s.M(i, j);
   for(std::size_t i = 0; i < s.rows; ++i) A[s.cols * P + i] = s.b(i);
@@ -157,7 +157,8 @@ struct Variants
   static constexpr Kernel dispatched = &WI::dispatch_solver<S>;
   static const char* name()
   {
-    return S == WI::Solver::HOUSEHOLDER_QR ? "QR" : S == WI::Solver::SEMI_NORMAL_ELSE_QR ? "semi-normal" : "order-2 moments";
+    return S == WI::Solver::HOUSEHOLDER_QR ? "QR" : S == WI::Solver::SEMI_NORMAL_ELSE_QR ? "semi-normal"
+         : S == WI::Solver::WAVEJET_SEMI_NORMAL_ELSE_QR ? "semi-normal, polar moments" : "order-2 moments";
   }
 };
 
@@ -300,16 +301,18 @@ static System wavejet_system(const std::vector<double>& x, const std::vector<dou
 
 /// Neighborhoods like those the fits see, in the rescaled frame (r <= 1, the center first): a
 /// uniform disc sample, an anisotropic strip, a cluster with a few far points; heights of a smooth
-/// surface (saddle, bumps) plus noise; 1.1 to 4 times as many points as unknowns.
-static std::vector<System> wavejet_systems(std::size_t count, std::mt19937_64& random)
+/// surface (saddle, bumps) plus noise; orders lowest_order to lowest_order + 5, lowest_ratio (1.1) to
+/// 4 times as many points as unknowns.
+static std::vector<System> wavejet_systems(std::size_t count, std::mt19937_64& random, std::size_t lowest_order = 1,
+                                           double lowest_ratio = 1.1)
 {
   std::uniform_real_distribution<double> uniform(-1., 1.);
   std::normal_distribution<double> gauss(0., 1.);
   std::vector<System> systems;
   for(std::size_t q = 0; q < count; ++q)
   {
-    const std::size_t order = 1 + q % 6, B = WI::number_of_coefficients(order);
-    const double ratio = 1.1 + 2.9 * (0.5 + 0.5 * uniform(random));
+    const std::size_t order = lowest_order + q % 6, B = WI::number_of_coefficients(order);
+    const double ratio = lowest_ratio + (4. - lowest_ratio) * (0.5 + 0.5 * uniform(random));
     const std::size_t L = (std::max)(B, std::size_t(std::ceil(ratio * double(B))));
     const int shape = int(q / 6 % 3);
     const double noise = (q / 18 % 3) * 0.01, a = uniform(random), c = uniform(random);
@@ -362,6 +365,100 @@ static void test_semi_normal_on_wavejet_systems()
                                      std::to_string(per_shape) + " uniform samples themselves (all), " +
                                      std::to_string(own[1]) + " of the strips and " + std::to_string(own[2]) +
                                      " of the clusters (the rest went to the QR)");
+}
+
+// The semi-normal solver of the Wavejet systems (Gram matrix from polar moments) agrees with the QR
+// and with the dot-by-dot Gram matrix, solves the uniform samples itself, is least_squares() bit for
+// bit where it does not use the moments, and its compilations agree as the other solvers' do.
+static void test_wavejet_semi_normal_on_wavejet_systems()
+{
+  std::mt19937_64 random(20261203);
+  std::vector<System> systems = wavejet_systems(1800, random);     // orders 1 to 6, 1.1 to 4 points per unknown
+  const std::vector<System> high = wavejet_systems(1800, random, 5, 2.); // orders 5 to 10, 2 to 4 per unknown
+  systems.insert(systems.end(), high.begin(), high.end());
+  typedef Variants<WI::Solver::WAVEJET_SEMI_NORMAL_ELSE_QR> V;
+  const bool has_avx = processor_has_avx(), has_fma = processor_has_fma();
+  double worst = 0., worst_gram = 0., worst_baseline = 0.;
+  std::size_t polar = 0, own[3] = {0, 0, 0}, own_by_dots[3] = {0, 0, 0}, per_shape[3] = {0, 0, 0};
+  bool all_solved = true, same_elsewhere = true, avx_bitwise = true, dispatch_ok = true;
+  std::vector<double> qr, mine, other, base, avx, fma;
+  for(std::size_t q = 0; q < systems.size(); ++q)
+  {
+    const System& s = systems[q];
+    const bool solved = solve(&WI::householder_least_squares, s, qr) && solve(&WI::wavejet_least_squares, s, mine);
+    all_solved = all_solved && solved;
+    const bool uses_moments = s.cols >= WI::semi_normal_minimum_columns &&
+                              s.rows >= WI::polar_moment_minimum_rows_per_column * s.cols;
+    if(!uses_moments)
+    {
+      solve(&WI::least_squares, s, other);
+      same_elsewhere = same_elsewhere && other == mine;
+      continue;
+    }
+    ++polar;
+    // The Gram matrix itself, against the dot products, scaled by the diagonal (the uniform samples).
+    const std::size_t P = WI::padded_rows(s.rows), B = s.cols, S = (B + 4) / 4 * 4;
+    const std::size_t K = WI::polar_moment_order(B);
+    std::vector<double, WI::Aligned_allocator<double> > A(P * (B + 1), 0.), scratch(WI::polar_moment_scratch_size(P, K));
+    for(std::size_t j = 0; j < B; ++j)
+      for(std::size_t i = 0; i < s.rows; ++i) A[j * P + i] = s.M(i, j);
+    for(std::size_t i = 0; i < s.rows; ++i) A[B * P + i] = s.b(i);
+    std::vector<double> G_dots(B * S, 0.), G_moments(B * S, 0.);
+    WI::gram_upper(A.data(), P, B, G_dots.data(), S);
+    WI::polar_moment_gram_upper(A.data(), P, K, scratch.data(), G_moments.data());
+    const int shape = int(q % 1800 / 6 % 3);
+    if(shape == 0)
+      for(std::size_t i = 0; i < B; ++i)
+        for(std::size_t j = i; j <= B; ++j)
+        {
+          const double norm_j = j < B ? G_dots[j * S + j] : s.b.squaredNorm();
+          worst_gram = (std::max)(worst_gram, std::abs(G_moments[i * S + j] - G_dots[i * S + j]) /
+                                                std::sqrt(G_dots[i * S + i] * norm_j));
+        }
+    if(solved) worst = (std::max)(worst, relative_difference(mine, qr));
+    // Whether the semi-normal equations with the moments solve it themselves (their guards accept it).
+    ++per_shape[shape];
+    std::vector<double> c(B, 0.);
+    std::vector<double, WI::Aligned_allocator<double> > v(WI::wavejet_least_squares_scratch_size(s.rows, B));
+    const std::vector<double, WI::Aligned_allocator<double> > system = A;
+    own[shape] += WI::wavejet_semi_normal_kernel(A.data(), s.rows, B, v.data(), c.data());
+    A = system;
+    own_by_dots[shape] += WI::semi_normal_kernel(A.data(), s.rows, B, v.data(), c.data());
+    // The compilations: the baseline against the baseline QR (the FMA clone is `mine` when the
+    // processor has it: checked against the dispatched QR above), AVX bitwise the baseline.
+    solve(V::baseline, s, base);
+    solve(&WI::householder_kernel, s, other);
+    worst_baseline = (std::max)(worst_baseline, relative_difference(base, other));
+    if(has_avx)
+    {
+      solve(V::avx, s, avx);
+      avx_bitwise = avx_bitwise && avx == base;
+    }
+    if(has_fma)
+      solve(V::fma, s, fma);
+    dispatch_ok = dispatch_ok && mine == (has_fma ? fma : has_avx ? avx : base);
+  }
+  const std::string n = std::to_string(systems.size()) + " Wavejet systems (orders 1 to 10)";
+  check_printed(all_solved, "QR and wavejet_least_squares() solve the " + n);
+  check_printed(polar > 1000, std::to_string(polar) + " of them have enough unknowns and rows for the polar moments");
+  check_printed(same_elsewhere, "wavejet_least_squares() == least_squares(), bitwise, on the others (fewer than " +
+                                  std::to_string(WI::semi_normal_minimum_columns) + " unknowns or " +
+                                  std::to_string(WI::polar_moment_minimum_rows_per_column) + " rows per unknown)");
+  check_printed(worst_gram <= 1e-13, "Gram matrix from polar moments vs dot products: " + sci(worst_gram) +
+                                       " relative to the diagonal (<= 1e-13) on the uniform samples");
+  check_printed(worst <= 1e-10, "wavejet_least_squares() vs QR (dispatched: " +
+                                  std::string(has_fma ? "AVX2 + FMA" : has_avx ? "AVX" : "baseline") + "): " + sci(worst) +
+                                  " relative (<= 1e-10) on the " + std::to_string(polar) + " systems it solves with the moments");
+  check_printed(own[0] == per_shape[0], "the semi-normal equations with the moments solved " + std::to_string(own[0]) +
+                                          " of the " + std::to_string(per_shape[0]) + " uniform samples themselves (all), " +
+                                          std::to_string(own[1]) + " of " + std::to_string(per_shape[1]) + " strips and " +
+                                          std::to_string(own[2]) + " of " + std::to_string(per_shape[2]) +
+                                          " clusters (with the Gram matrix dot by dot: " + std::to_string(own_by_dots[0]) +
+                                          ", " + std::to_string(own_by_dots[1]) + " and " + std::to_string(own_by_dots[2]) + ")");
+  check_printed(worst_baseline <= 1e-10, "baseline compilation vs its QR: " + sci(worst_baseline) + " relative (<= 1e-10)");
+  if(has_avx) check_printed(avx_bitwise, "AVX clone == baseline, bitwise");
+  else std::cout << "[SKIP] AVX clone: the processor has no AVX" << std::endl;
+  check_printed(dispatch_ok, "the dispatch picks the clone the processor supports (bitwise equal to it)");
 }
 
 // The order-2 solver from the moments (no M) agrees with the QR of the built system, in every
@@ -451,8 +548,39 @@ static void test_semi_normal_fallback()
       order2_refused += !solve_order2(&WI::dispatch_solver<WI::Solver::ORDER2_MOMENTS>, t, mine);
     }
   }
+  // The Wavejet solver with the polar moments: nearly collinear neighborhoods at orders 5 and 6, with
+  // 100 points (enough per unknown for the moments).
+  std::size_t wavejet_refused = 0, wavejet_same_as_qr = 0, wavejet_systems_count = 0;
+  for(std::size_t order : {std::size_t(5), std::size_t(6)})
+  {
+    std::vector<double> x, y, z;
+    for(std::size_t l = 0; l < 100; ++l)
+    {
+      x.push_back(uniform(random));
+      y.push_back(1e-4 * uniform(random));
+      z.push_back(x.back() * x.back() + 0.3 * x.back() * y.back());
+    }
+    const System t = wavejet_system(x, y, z, order);
+    ++wavejet_systems_count;
+    const std::size_t P = WI::padded_rows(t.rows);
+    std::vector<double, WI::Aligned_allocator<double> > A(P * (t.cols + 1), 0.), v(WI::wavejet_least_squares_scratch_size(t.rows, t.cols));
+    for(std::size_t j = 0; j < t.cols; ++j)
+      for(std::size_t i = 0; i < t.rows; ++i) A[j * P + i] = t.M(i, j);
+    for(std::size_t i = 0; i < t.rows; ++i) A[t.cols * P + i] = t.b(i);
+    const std::vector<double, WI::Aligned_allocator<double> > before = A;
+    std::vector<double> c(t.cols), qr, mine;
+    const bool accepted = WI::wavejet_semi_normal_kernel(A.data(), t.rows, t.cols, v.data(), c.data());
+    wavejet_refused += !accepted;
+    unchanged = unchanged && (accepted || A == before);
+    const bool solved_qr = solve(&WI::householder_least_squares, t, qr), solved = solve(&WI::wavejet_least_squares, t, mine);
+    wavejet_same_as_qr += solved == solved_qr && (!solved || mine == qr);
+  }
   const std::string n = std::to_string(ill.size()) + " ill-conditioned systems";
   check_printed(refused == ill.size(), "the semi-normal guards refused " + std::to_string(refused) + " of the " + n);
+  check_printed(wavejet_refused == wavejet_systems_count && wavejet_same_as_qr == wavejet_systems_count,
+                "with the polar moments, the guards refused " + std::to_string(wavejet_refused) + " of " +
+                  std::to_string(wavejet_systems_count) + " nearly collinear neighborhoods (orders 5, 6; 100 points), "
+                  "and wavejet_least_squares() == the QR, bitwise, on " + std::to_string(wavejet_same_as_qr));
   check_printed(unchanged, "a refused system is left unchanged for the QR");
   check_printed(order2_systems == 1 && order2_refused == order2_systems,
                 "the order-2 moments refused " + std::to_string(order2_refused) + " of the " +
@@ -555,6 +683,7 @@ int main(int argc, char** argv)
     Case{"kernels.semi_normal_rank_deficient_reported", test_rank_deficient_reported<WI::Solver::SEMI_NORMAL_ELSE_QR>},
     Case{"kernels.semi_normal_agrees_with_qr_on_wavejet_systems", test_semi_normal_on_wavejet_systems},
     Case{"kernels.semi_normal_falls_back_to_qr", test_semi_normal_fallback},
+    Case{"kernels.wavejet_semi_normal_agrees_with_qr_on_wavejet_systems", test_wavejet_semi_normal_on_wavejet_systems},
     Case{"kernels.order2_moments_agree_with_qr_on_wavejet_systems", test_order2_moments_on_wavejet_systems},
     Case{"kernels.portable_build_bitwise", test_portable_build_bitwise},
     Case{"kernels.avx_only_kernels_bitwise", test_avx_only_kernels_bitwise},

@@ -449,7 +449,7 @@ private:
     project_onto_frame(L, P, frame, h);
     evaluate_basis_columns(xs_.data(), ys_.data(), L, P, order, A);
     c.resize(B);
-    if(keep_system ? !solve_weighted(L, B, nullptr, c) : !solve_work(L, B, c))
+    if(keep_system ? !solve_weighted(L, B, nullptr, c) : !solve_work(L, B, c, true))
       return false;
 
     for(std::size_t it = 0; it < robust_iterations; ++it)
@@ -610,22 +610,25 @@ private:
   {
     const std::size_t P = padded_rows(L);
     work_.assign(system_.begin(), system_.begin() + P * (B + 1));
-    if(sqrt_weights)
-      for(std::size_t b = 0; b <= B; ++b)
-      {
-        double* column = work_.data() + b * P;
-        for(std::size_t l = 0; l < L; ++l) column[l] *= sqrt_weights[l];
-      }
-    return solve_work(L, B, c);
+    if(!sqrt_weights) // the unweighted height rows of fit_in_frame(): the Wavejet basis itself
+      return solve_work(L, B, c, true);
+    for(std::size_t b = 0; b <= B; ++b)
+    {
+      double* column = work_.data() + b * P;
+      for(std::size_t l = 0; l < L; ++l) column[l] *= sqrt_weights[l];
+    }
+    return solve_work(L, B, c, false);
   }
 
   // Least squares on the system [A | h] in work_ (destroyed: R on return, see least_squares.h).
-  bool solve_work(std::size_t L, std::size_t B, std::vector<double>& c)
+  // `wavejet_basis`: A is the basis of evaluate_basis_columns() at the order of B unknowns (no
+  // weights, no slope rows), solved by wavejet_least_squares(); else by least_squares().
+  bool solve_work(std::size_t L, std::size_t B, std::vector<double>& c, bool wavejet_basis)
   {
     const std::size_t P = padded_rows(L);
-    solver_scratch_.resize(least_squares_scratch_size(L, B));
+    solver_scratch_.resize(wavejet_basis ? wavejet_least_squares_scratch_size(L, B) : least_squares_scratch_size(L, B));
     c.resize(B);
-    if(!least_squares(work_.data(), L, B, solver_scratch_.data(), c.data()))
+    if(!(wavejet_basis ? wavejet_least_squares : least_squares)(work_.data(), L, B, solver_scratch_.data(), c.data()))
       return false;
     for(std::size_t b = 0; b < B; ++b)
       if(!std::isfinite(c[b])) return false;

@@ -14,7 +14,9 @@
 // least_squares() solves by the corrected semi-normal equations (WAVEJETS_MATH.md section 2, step 3),
 // guarded, and hands the systems too ill-conditioned for them to the Householder QR
 // (householder_least_squares()). Plain normal equations are not used: the Wavejet systems are too
-// ill-conditioned for them.
+// ill-conditioned for them. wavejet_least_squares() is the same solver for a system whose columns
+// are the Wavejet basis (basis.h): it builds the Gram matrix M^T M from the polar moments of the
+// neighborhood (polar_moment_gram_upper()) instead of from the dot products of M's columns.
 //
 // Layout: column-major, every column (the right-hand side is one more column) padded with zero
 // rows to a multiple of `householder_block` rows. Each dot product runs over whole blocks with
@@ -25,11 +27,13 @@
 // vector width the compiler picked: the partial sums and their final reduction are always the
 // same, so the SSE2 and AVX code give bitwise identical results.
 
+#include <CGAL/Wavejets/internal/basis.h>
 #include <CGAL/Wavejets/internal/instruction_sets.h>
 
 #include <boost/align/aligned_allocator.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstring>
@@ -384,6 +388,199 @@ CGAL_WAVEJETS_KERNEL_INLINE void gram_upper(const double* X, std::size_t P, std:
   if(i < n) column_dots(X + i * P, X, P, i, n + 1, G + i * stride);
 }
 
+/// Largest order K whose Gram matrix polar_moment_gram_upper() builds from polar moments.
+constexpr std::size_t polar_moment_maximum_order = 12;
+
+/// Real columns of the powers z^m = (x + i y)^m, m = 0..2K, in polar_moment_gram_upper(): Re z^0,
+/// then Re z^m, Im z^m for m = 1..2K; rounded up to whole tiles of four.
+inline std::size_t polar_power_columns(std::size_t order) { return (4 * order + 1 + 3) / 4 * 4; }
+
+/// The Gram matrix of the order-K Wavejet basis from its polar moments mu[a * polar_power_columns(K)
+/// + c] = sum_l r_l^{2a} Z_c(l) (Z_c: the c-th real column of the powers z^m, see
+/// polar_power_columns()): each entry G[i * S + j] of the upper triangle (S = 4 ceil((B + 1) / 4), the
+/// row stride of semi_normal_kernel()) is one moment, half of one, or the half-sum or half-difference
+/// of two: lists of (entry, moment) and of (entry, moment, moment) indices.
+struct Polar_moment_terms
+{
+  std::vector<unsigned short> single, half, half_sum, half_difference;
+};
+
+/// The terms of polar_moment_gram_upper() for every order up to polar_moment_maximum_order, built
+/// once. Column b of the basis is r^k cos(n theta) or r^k sin(n theta); the product of two columns
+/// is r^p (p = k + k') times cos cos = (cos(n - n') + cos(n + n')) / 2, sin sin = (cos(n - n') -
+/// cos(n + n')) / 2, cos sin or sin cos = (sin(n + n') -+ sin(n - n')) / 2 (of theta), and
+/// r^p cos(m theta) = r^{p - m} Re z^m, r^p sin(m theta) = r^{p - m} Im z^m, with p - m even
+/// (n = k mod 2 in the basis) and m <= p.
+inline const Polar_moment_terms& polar_moment_terms(std::size_t order)
+{
+  static const std::array<Polar_moment_terms, polar_moment_maximum_order + 1> tables = [] {
+    std::array<Polar_moment_terms, polar_moment_maximum_order + 1> all;
+    for(std::size_t K = 1; K <= polar_moment_maximum_order; ++K)
+    {
+      const std::size_t B = number_of_coefficients(K), S = (B + 4) / 4 * 4, Z = polar_power_columns(K);
+      std::vector<int> degree, frequency, is_sine; // of each column
+      for(std::size_t k = 0; k <= K; ++k)
+        for(std::size_t n = k % 2; n <= k; n += 2)
+          for(int sine = 0; sine < (n > 0 ? 2 : 1); ++sine)
+          {
+            degree.push_back(int(k));
+            frequency.push_back(int(n));
+            is_sine.push_back(sine);
+          }
+      // Moment index of r^p cos(m theta) and of r^p sin(m theta), m >= 0.
+      auto cosine = [Z](int p, int m) { return ((p - m) / 2) * Z + (m == 0 ? 0 : 2 * m - 1); };
+      auto sine = [Z](int p, int m) { return ((p - m) / 2) * Z + 2 * m; };
+      Polar_moment_terms& t = all[K];
+      auto add = [](std::vector<unsigned short>& list, std::size_t entry, std::size_t first, std::size_t second) {
+        list.push_back((unsigned short)(entry));
+        list.push_back((unsigned short)(first));
+        list.push_back((unsigned short)(second));
+      };
+      for(std::size_t i = 0; i < B; ++i)
+        for(std::size_t j = i; j < B; ++j)
+        {
+          const int p = degree[i] + degree[j], n = frequency[i], m = frequency[j];
+          const int difference = n > m ? n - m : m - n, sum = n + m;
+          const std::size_t e = i * S + j;
+          if(!is_sine[i] && !is_sine[j])
+          {
+            if(n == 0 || m == 0)
+            {
+              t.single.push_back((unsigned short)(e));
+              t.single.push_back((unsigned short)(cosine(p, sum)));
+            }
+            else
+              add(t.half_sum, e, cosine(p, difference), cosine(p, sum));
+          }
+          else if(is_sine[i] && is_sine[j])
+            add(t.half_difference, e, cosine(p, difference), cosine(p, sum));
+          else
+          { // sin(n + n') / 2 - sin(d) / 2, d = (frequency of the cosine) - (frequency of the sine)
+            const int d = is_sine[i] ? m - n : n - m;
+            if(n == 0 || m == 0) // r^k times r^k' sin(n' theta): one moment
+            {
+              t.single.push_back((unsigned short)(e));
+              t.single.push_back((unsigned short)(sine(p, sum)));
+            }
+            else if(d == 0) // cos(n theta) sin(n theta) = sin(2 n theta) / 2
+            {
+              t.half.push_back((unsigned short)(e));
+              t.half.push_back((unsigned short)(sine(p, sum)));
+            }
+            else if(d > 0)
+              add(t.half_difference, e, sine(p, sum), sine(p, d));
+            else
+              add(t.half_sum, e, sine(p, sum), sine(p, -d));
+          }
+        }
+    }
+    return all;
+  }();
+  return tables[order];
+}
+
+/// Scratch doubles of polar_moment_gram_upper() at order K, P rows: the powers z^m and r^{2a} that
+/// are not columns of the basis, and the moments.
+inline std::size_t polar_moment_scratch_size(std::size_t P, std::size_t order)
+{
+  return (2 * order + (order - order / 2)) * P + (order + 1) * polar_power_columns(order);
+}
+
+/// The Gram matrix of the order-K Wavejet basis columns of A (evaluate_basis_columns(); stride P,
+/// zero padding rows, b in column B) from the polar moments sum_l r_l^{2a} z_l^m (2a + m <= 2K):
+/// the same upper triangle and column B (M^T b, dot by dot) as gram_upper(), in about a quarter of
+/// its multiply-adds (the moments are dot products of the columns r^{2a} with the real columns of
+/// z^m, by 2 x 4 tiles of four-lane accumulators). The powers that are columns of the basis are read
+/// there (z^m = r^m e^{i m theta} for m <= K, r^{2a} for 2a <= K), the others are built in `scratch`
+/// (polar_moment_scratch_size()). Rounding: each moment is a sum of correctly signed terms, but the
+/// entries of two moments (cos cos, sin sin...) lose digits when both are large and their half-sum
+/// small; the semi-normal kernel's guards see that (its refinement step uses M itself).
+CGAL_WAVEJETS_KERNEL_INLINE void polar_moment_gram_upper(const double* A, std::size_t P, std::size_t order,
+                                                        double* scratch, double* G)
+{
+  const std::size_t K = order, B = number_of_coefficients(K), Z = polar_power_columns(K);
+  const double* x = A + P;
+  const double* y = A + 2 * P;
+  const double* power[4 * polar_moment_maximum_order + 4]; // real columns of z^m
+  const double* radial[polar_moment_maximum_order + 2];    // r^{2a}
+  power[0] = A;
+  for(std::size_t m = 1; m <= K; ++m)
+  {
+    power[2 * m - 1] = A + (order_offset(m) + m - 1) * P;
+    power[2 * m] = A + (order_offset(m) + m) * P;
+  }
+  double* built = scratch;
+  for(std::size_t m = K + 1; m <= 2 * K; ++m, built += 2 * P) // z^m = z^{m-1} z, as evaluate_basis_columns()
+  {
+    const double* pre = power[2 * m - 3];
+    const double* pim = power[2 * m - 2];
+    double* re = built;
+    double* im = built + P;
+    for(std::size_t l = 0; l < P; ++l)
+    {
+      re[l] = pre[l] * x[l] - pim[l] * y[l];
+      im[l] = pre[l] * y[l] + pim[l] * x[l];
+    }
+    power[2 * m - 1] = re;
+    power[2 * m] = im;
+  }
+  for(std::size_t c = 4 * K + 1; c < Z; ++c) power[c] = power[0]; // tile padding: computed, never read
+  for(std::size_t a = 0; a <= K; ++a)
+  {
+    if(2 * a <= K)
+    {
+      radial[a] = A + order_offset(2 * a) * P;
+      continue;
+    }
+    const double* below = radial[a - 1];
+    for(std::size_t l = 0; l < P; ++l) built[l] = (x[l] * x[l] + y[l] * y[l]) * below[l];
+    radial[a] = built;
+    built += P;
+  }
+  radial[K + 1] = radial[K]; // the partner of the last row when K is even: computed, never read
+  // Moments mu[a * Z + c] = r^{2a} . (column c of the powers), for the c of z^m with 2a + m <= 2K,
+  // rows a, a + 1 together (the columns row a needs cover those of row a + 1).
+  double* mu = built;
+  const Double4 zero = {0., 0., 0., 0.};
+  for(std::size_t a = 0; a <= K; a += 2)
+    for(std::size_t c = 0; c < 1 + 2 * (2 * K - 2 * a); c += 4)
+    {
+      Double4 acc[2][4] = {{zero, zero, zero, zero}, {zero, zero, zero, zero}};
+      const double* u0 = radial[a];
+      const double* u1 = radial[a + 1];
+      const double* z[4] = {power[c], power[c + 1], power[c + 2], power[c + 3]};
+      for(std::size_t r = 0; r < P; r += 4)
+      {
+        Double4 a0, a1, b;
+        load4(a0, u0 + r);
+        load4(a1, u1 + r);
+        for(int m = 0; m < 4; ++m)
+        {
+          load4(b, z[m] + r);
+          acc[0][m] += a0 * b;
+          acc[1][m] += a1 * b;
+        }
+      }
+      for(int m = 0; m < 4; ++m)
+      {
+        mu[a * Z + c + m] = reduce4(acc[0][m]);
+        if(a + 1 <= K) mu[(a + 1) * Z + c + m] = reduce4(acc[1][m]);
+      }
+    }
+  // The entries (halving is exact: the same values whether or not the compiler fuses).
+  const Polar_moment_terms& terms = polar_moment_terms(K);
+  for(std::size_t t = 0; t < terms.single.size(); t += 2) G[terms.single[t]] = mu[terms.single[t + 1]];
+  for(std::size_t t = 0; t < terms.half.size(); t += 2) G[terms.half[t]] = 0.5 * mu[terms.half[t + 1]];
+  for(std::size_t t = 0; t < terms.half_sum.size(); t += 3)
+    G[terms.half_sum[t]] = 0.5 * (mu[terms.half_sum[t + 1]] + mu[terms.half_sum[t + 2]]);
+  for(std::size_t t = 0; t < terms.half_difference.size(); t += 3)
+    G[terms.half_difference[t]] = 0.5 * (mu[terms.half_difference[t + 1]] - mu[terms.half_difference[t + 2]]);
+  const std::size_t S = (B + 4) / 4 * 4;
+  double dots[(polar_moment_maximum_order + 1) * (polar_moment_maximum_order + 2) / 2];
+  column_dots(A + B * P, A, P, 0, B, dots); // M^T b
+  for(std::size_t i = 0; i < B; ++i) G[i * S + B] = dots[i];
+}
+
 /// y[l] -= a x[l] for l = begin, begin + 1, ... while a whole block of four fits before `end`,
 /// four lanes at a time; returns the first l not done (`end` when end - begin is a multiple of four).
 CGAL_WAVEJETS_KERNEL_INLINE std::size_t subtract_multiple_blocks(double* y, const double* x, double a, std::size_t begin,
@@ -446,6 +643,19 @@ constexpr double semi_normal_correction_guard = 1e-6;
 inline std::size_t semi_normal_scratch_size(std::size_t rows, std::size_t cols)
 {
   return padded_rows(rows) + 2 * cols * ((cols + 4) / 4 * 4) + 4 * cols + 1;
+}
+
+/// Where semi_normal_kernel() with a Wavejet order puts polar_moment_gram_upper()'s scratch: after its
+/// own, at a whole block (the columns built there are as aligned as the scratch).
+inline std::size_t polar_moment_scratch_offset(std::size_t rows, std::size_t cols)
+{
+  return padded_rows(semi_normal_scratch_size(rows, cols));
+}
+
+/// Scratch doubles needed by semi_normal_kernel() with a Wavejet order K > 0 (cols unknowns).
+inline std::size_t wavejet_semi_normal_scratch_size(std::size_t rows, std::size_t cols, std::size_t order)
+{
+  return polar_moment_scratch_offset(rows, cols) + polar_moment_scratch_size(padded_rows(rows), order);
 }
 
 /// The solve shared by the semi-normal solvers, from the Gram matrix G = M^T M (upper triangle,
@@ -521,13 +731,15 @@ CGAL_WAVEJETS_KERNEL_INLINE bool semi_normal_refine(const double* R, const doubl
 /// same factor, x += dx). Faster than the Householder QR for the larger Wavejet systems (1.3x at
 /// 97 x 28, see semi_normal_minimum_columns): the Gram matrix is independent dot products, where
 /// the QR is a chain of column steps.
+/// The body of semi_normal_kernel() (`wavejet_order` 0: the Gram matrix dot by dot) and of
+/// wavejet_semi_normal_kernel() (`wavejet_order` K > 0: from the polar moments of the order-K basis).
 /// Guarded: returns false, leaving A unchanged, when a scaled pivot is below
 /// semi_normal_pivot_guard or the correction exceeds semi_normal_correction_guard times the
 /// solution (then the caller solves with the QR). On success, as the QR: the upper triangle of
 /// A's first `cols` columns holds R (of M, unscaled; the QR's up to the signs of its rows) and
 /// c[0..cols-1] the solution.
-CGAL_WAVEJETS_KERNEL_INLINE bool semi_normal_kernel(double* A, std::size_t rows, std::size_t cols, double* scratch,
-                                                   double* c)
+CGAL_WAVEJETS_KERNEL_INLINE bool semi_normal_solve(double* A, std::size_t rows, std::size_t cols, double* scratch,
+                                                  double* c, std::size_t wavejet_order)
 {
   if(rows < cols || cols == 0)
     return false;
@@ -541,7 +753,10 @@ CGAL_WAVEJETS_KERNEL_INLINE bool semi_normal_kernel(double* A, std::size_t rows,
   double* correction = rhs + n + 1;
   const double* b = A + n * P;
   // Gram matrix, upper triangle, and M^T b (row i of R: column i's dots with columns i..n-1, then b).
-  gram_upper(A, P, n, R, S);
+  if(wavejet_order > 0)
+    polar_moment_gram_upper(A, P, wavejet_order, scratch + polar_moment_scratch_offset(rows, n), R);
+  else
+    gram_upper(A, P, n, R, S);
   if(!semi_normal_factor_and_solve(R, Rt, scale, inverse_diagonal, rhs, n, S, c))
     return false;
   // Refinement: r = b - M x, D M^T r, solve, x += D dx.
@@ -553,6 +768,34 @@ CGAL_WAVEJETS_KERNEL_INLINE bool semi_normal_kernel(double* A, std::size_t rows,
   for(std::size_t j = 0; j < n; ++j) // R of M: D^-1-scaled columns of the scaled factor
     for(std::size_t i = 0; i <= j; ++i) A[j * P + i] = R[i * S + j] / scale[j];
   return true;
+}
+
+/// Corrected semi-normal equations, the Gram matrix M^T M dot by dot (gram_upper()): see
+/// semi_normal_solve() above. `scratch`: semi_normal_scratch_size().
+CGAL_WAVEJETS_KERNEL_INLINE bool semi_normal_kernel(double* A, std::size_t rows, std::size_t cols, double* scratch,
+                                                   double* c)
+{
+  return semi_normal_solve(A, rows, cols, scratch, c, 0);
+}
+
+/// Order K of a Wavejet system of `cols` = (K+1)(K+2)/2 unknowns whose Gram matrix
+/// polar_moment_gram_upper() builds, else 0.
+inline std::size_t polar_moment_order(std::size_t cols)
+{
+  for(std::size_t K = 1; K <= polar_moment_maximum_order; ++K)
+    if(number_of_coefficients(K) == cols)
+      return K;
+  return 0;
+}
+
+/// The same for a Wavejet system: A's columns are the basis of evaluate_basis_columns() at the order
+/// K of `cols` = (K+1)(K+2)/2 unknowns (polar_moment_order(cols) > 0), and the Gram matrix is built
+/// from their polar moments (polar_moment_gram_upper()). The same guards, refusals and results up to
+/// the rounding of the Gram matrix. `scratch`: wavejet_semi_normal_scratch_size().
+CGAL_WAVEJETS_KERNEL_INLINE bool wavejet_semi_normal_kernel(double* A, std::size_t rows, std::size_t cols, double* scratch,
+                                                           double* c)
+{
+  return semi_normal_solve(A, rows, cols, scratch, c, polar_moment_order(cols));
 }
 
 /// Unknowns of an order-2 Wavejet: 1, x, y, x^2 + y^2, x^2 - y^2, 2 x y (basis.h's columns).
@@ -691,11 +934,32 @@ CGAL_WAVEJETS_KERNEL_INLINE bool least_squares_kernel(double* A, std::size_t row
 }
 
 
+/// Fewest rows per unknown for which wavejet_least_squares_kernel() builds the Gram matrix from polar
+/// moments: their cost is mostly per unknown (the 3K power columns, the B(B+1)/2 entries), the dot
+/// products' per row. Measured on one core (AVX2 + FMA, semi-normal solve with the moments against
+/// dot by dot): 97 x 28 3.46 against 4.12 us, 120 x 36 5.36 against 6.81, 60 x 28 3.18-3.28 against
+/// 3.30-3.35, 70 x 21 2.39 against 2.42, 40 x 21 2.19-2.20 against 1.97-2.04.
+constexpr std::size_t polar_moment_minimum_rows_per_column = 2;
+
+/// least_squares_kernel() for the Wavejet systems of evaluate_basis_columns() (cols = (K+1)(K+2)/2
+/// unknowns): the semi-normal equations' Gram matrix from polar moments up to
+/// polar_moment_maximum_order and from polar_moment_minimum_rows_per_column, dot by dot otherwise.
+/// `scratch`: wavejet_least_squares_scratch_size().
+CGAL_WAVEJETS_KERNEL_INLINE bool wavejet_least_squares_kernel(double* A, std::size_t rows, std::size_t cols,
+                                                             double* scratch, double* c)
+{
+  const bool moments = rows >= polar_moment_minimum_rows_per_column * cols && polar_moment_order(cols) > 0;
+  return (cols >= semi_normal_minimum_columns && (moments ? wavejet_semi_normal_kernel(A, rows, cols, scratch, c)
+                                                          : semi_normal_kernel(A, rows, cols, scratch, c))) ||
+         householder_kernel(A, rows, cols, scratch, c);
+}
+
 /// The solvers the dispatch below serves.
 enum class Solver
 {
   HOUSEHOLDER_QR,         ///< householder_kernel() only
   SEMI_NORMAL_ELSE_QR,    ///< least_squares_kernel(): the guarded semi-normal equations, else the QR
+  WAVEJET_SEMI_NORMAL_ELSE_QR, ///< wavejet_least_squares_kernel(): the same, the Gram matrix from polar moments
   ORDER2_MOMENTS          ///< order2_moments_kernel(): A holds the columns x, y, h; cols and scratch unused
 };
 
@@ -706,6 +970,7 @@ CGAL_WAVEJETS_KERNEL_INLINE bool solver_kernel(double* A, std::size_t rows, std:
   {
   case Solver::HOUSEHOLDER_QR: return householder_kernel(A, rows, cols, scratch, c);
   case Solver::SEMI_NORMAL_ELSE_QR: return least_squares_kernel(A, rows, cols, scratch, c);
+  case Solver::WAVEJET_SEMI_NORMAL_ELSE_QR: return wavejet_least_squares_kernel(A, rows, cols, scratch, c);
   case Solver::ORDER2_MOMENTS: return order2_moments_kernel(A, rows, c);
   }
   return false;
@@ -768,6 +1033,27 @@ inline bool least_squares(double* A, std::size_t rows, std::size_t cols, double*
   return dispatch_solver<Solver::HOUSEHOLDER_QR>(A, rows, cols, scratch, c);
 #else
   return dispatch_solver<Solver::SEMI_NORMAL_ELSE_QR>(A, rows, cols, scratch, c);
+#endif
+}
+
+/// Scratch doubles needed by wavejet_least_squares().
+inline std::size_t wavejet_least_squares_scratch_size(std::size_t rows, std::size_t cols)
+{
+  const std::size_t K = polar_moment_order(cols);
+  return K > 0 ? (std::max)(2 * padded_rows(rows), wavejet_semi_normal_scratch_size(rows, cols, K))
+               : least_squares_scratch_size(rows, cols);
+}
+
+/// least_squares() for a system whose columns are the Wavejet basis of evaluate_basis_columns() at
+/// order K (cols = (K+1)(K+2)/2), in the same layout: the Gram matrix of the semi-normal equations
+/// is built from polar moments (polar_moment_gram_upper()), the rest, the guards and the fallback
+/// to the QR are least_squares()'s. `scratch`: wavejet_least_squares_scratch_size(rows, cols).
+inline bool wavejet_least_squares(double* A, std::size_t rows, std::size_t cols, double* scratch, double* c)
+{
+#ifdef CGAL_WAVEJETS_NO_SEMI_NORMAL
+  return dispatch_solver<Solver::HOUSEHOLDER_QR>(A, rows, cols, scratch, c);
+#else
+  return dispatch_solver<Solver::WAVEJET_SEMI_NORMAL_ELSE_QR>(A, rows, cols, scratch, c);
 #endif
 }
 
