@@ -62,15 +62,23 @@ struct System
   Eigen::VectorXd b;
 };
 
-/// Solves `s` with `kernel`; false if the kernel reports a rank-deficient system.
-static bool solve(Kernel kernel, const System& s, std::vector<double>& c)
+typedef std::vector<double, WI::Aligned_allocator<double> > Aligned;
+
+/// `s` in the kernels' layout: [M | b], column-major, columns padded with zero rows.
+static Aligned padded_layout(const System& s)
 {
   const std::size_t P = WI::padded_rows(s.rows);
-  std::vector<double, WI::Aligned_allocator<double> > A(P * (s.cols + 1), 0.),
-    v(WI::wavejet_least_squares_scratch_size(s.rows, s.cols), 0.); // >= least_squares_scratch_size()
+  Aligned A(P * (s.cols + 1), 0.);
   for(std::size_t j = 0; j < s.cols; ++j)
     for(std::size_t i = 0; i < s.rows; ++i) A[j * P + i] = s.M(i, j);
   for(std::size_t i = 0; i < s.rows; ++i) A[s.cols * P + i] = s.b(i);
+  return A;
+}
+
+/// Solves `s` with `kernel`; false if the kernel reports a rank-deficient system.
+static bool solve(Kernel kernel, const System& s, std::vector<double>& c)
+{
+  Aligned A = padded_layout(s), v(WI::wavejet_least_squares_scratch_size(s.rows, s.cols), 0.); // >= least_squares_scratch_size()
   c.assign(s.cols, 0.);
   return kernel(A.data(), s.rows, s.cols, v.data(), c.data());
 }
@@ -399,10 +407,7 @@ static void test_wavejet_semi_normal_on_wavejet_systems()
     // The Gram matrix itself, against the dot products, scaled by the diagonal (the uniform samples).
     const std::size_t P = WI::padded_rows(s.rows), B = s.cols, S = (B + 4) / 4 * 4;
     const std::size_t K = WI::polar_moment_order(B);
-    std::vector<double, WI::Aligned_allocator<double> > A(P * (B + 1), 0.), scratch(WI::polar_moment_scratch_size(P, K));
-    for(std::size_t j = 0; j < B; ++j)
-      for(std::size_t i = 0; i < s.rows; ++i) A[j * P + i] = s.M(i, j);
-    for(std::size_t i = 0; i < s.rows; ++i) A[B * P + i] = s.b(i);
+    Aligned A = padded_layout(s), scratch(WI::polar_moment_scratch_size(P, K));
     std::vector<double> G_dots(B * S, 0.), G_moments(B * S, 0.);
     WI::gram_upper(A.data(), P, B, G_dots.data(), S);
     WI::polar_moment_gram_upper(A.data(), P, K, scratch.data(), G_moments.data());
@@ -419,8 +424,8 @@ static void test_wavejet_semi_normal_on_wavejet_systems()
     // Whether the semi-normal equations with the moments solve it themselves (their guards accept it).
     ++per_shape[shape];
     std::vector<double> c(B, 0.);
-    std::vector<double, WI::Aligned_allocator<double> > v(WI::wavejet_least_squares_scratch_size(s.rows, B));
-    const std::vector<double, WI::Aligned_allocator<double> > system = A;
+    Aligned v(WI::wavejet_least_squares_scratch_size(s.rows, B));
+    const Aligned system = A;
     own[shape] += WI::wavejet_semi_normal_kernel(A.data(), s.rows, B, v.data(), c.data());
     A = system;
     own_by_dots[shape] += WI::semi_normal_kernel(A.data(), s.rows, B, v.data(), c.data());
@@ -502,6 +507,27 @@ static void test_order2_moments_on_wavejet_systems()
                                           std::to_string(per_shape[2]) + " clusters");
 }
 
+/// What a semi-normal kernel and the solver around it do with system t: whether the kernel accepts
+/// it, leaves it unchanged when it refuses it, and whether the solver's result is the QR's bit for bit.
+struct Fallback
+{
+  bool accepted, unchanged, solved_by_qr, same_as_qr;
+};
+
+static Fallback semi_normal_fallback(const System& t, Kernel semi_normal, Kernel solver)
+{
+  Aligned A = padded_layout(t), v(WI::wavejet_least_squares_scratch_size(t.rows, t.cols));
+  const Aligned before = A;
+  std::vector<double> c(t.cols), qr, mine;
+  Fallback f;
+  f.accepted = semi_normal(A.data(), t.rows, t.cols, v.data(), c.data());
+  f.unchanged = f.accepted || A == before;
+  f.solved_by_qr = solve(&WI::householder_least_squares, t, qr);
+  const bool solved = solve(solver, t, mine);
+  f.same_as_qr = solved == f.solved_by_qr && (!solved || mine == qr);
+  return f;
+}
+
 // Ill-conditioned systems go to the QR: the guards refuse them, leave A unchanged, and the result
 // is the QR's, bit for bit.
 static void test_semi_normal_fallback()
@@ -529,19 +555,12 @@ static void test_semi_normal_fallback()
   bool unchanged = true;
   for(const System& t : ill)
   {
-    const std::size_t P = WI::padded_rows(t.rows);
-    std::vector<double, WI::Aligned_allocator<double> > A(P * (t.cols + 1), 0.), v(WI::least_squares_scratch_size(t.rows, t.cols));
-    for(std::size_t j = 0; j < t.cols; ++j)
-      for(std::size_t i = 0; i < t.rows; ++i) A[j * P + i] = t.M(i, j);
-    for(std::size_t i = 0; i < t.rows; ++i) A[t.cols * P + i] = t.b(i);
-    const std::vector<double, WI::Aligned_allocator<double> > before = A;
-    std::vector<double> c(t.cols), qr, mine;
-    const bool accepted = WI::semi_normal_kernel(A.data(), t.rows, t.cols, v.data(), c.data());
-    refused += !accepted;
-    unchanged = unchanged && (accepted || A == before);
-    const bool solved_qr = solve(&WI::householder_least_squares, t, qr), solved = solve(&WI::least_squares, t, mine);
-    qr_solved += solved_qr;
-    same_as_qr += solved == solved_qr && (!solved || mine == qr);
+    const Fallback f = semi_normal_fallback(t, &WI::semi_normal_kernel, &WI::least_squares);
+    refused += !f.accepted;
+    unchanged = unchanged && f.unchanged;
+    qr_solved += f.solved_by_qr;
+    same_as_qr += f.same_as_qr;
+    std::vector<double> mine;
     if(t.cols == WI::order2_columns && t.M.col(0).isOnes()) // a Wavejet system: the moments refuse it too
     {
       ++order2_systems;
@@ -560,20 +579,12 @@ static void test_semi_normal_fallback()
       y.push_back(1e-4 * uniform(random));
       z.push_back(x.back() * x.back() + 0.3 * x.back() * y.back());
     }
-    const System t = wavejet_system(x, y, z, order);
     ++wavejet_systems_count;
-    const std::size_t P = WI::padded_rows(t.rows);
-    std::vector<double, WI::Aligned_allocator<double> > A(P * (t.cols + 1), 0.), v(WI::wavejet_least_squares_scratch_size(t.rows, t.cols));
-    for(std::size_t j = 0; j < t.cols; ++j)
-      for(std::size_t i = 0; i < t.rows; ++i) A[j * P + i] = t.M(i, j);
-    for(std::size_t i = 0; i < t.rows; ++i) A[t.cols * P + i] = t.b(i);
-    const std::vector<double, WI::Aligned_allocator<double> > before = A;
-    std::vector<double> c(t.cols), qr, mine;
-    const bool accepted = WI::wavejet_semi_normal_kernel(A.data(), t.rows, t.cols, v.data(), c.data());
-    wavejet_refused += !accepted;
-    unchanged = unchanged && (accepted || A == before);
-    const bool solved_qr = solve(&WI::householder_least_squares, t, qr), solved = solve(&WI::wavejet_least_squares, t, mine);
-    wavejet_same_as_qr += solved == solved_qr && (!solved || mine == qr);
+    const Fallback f = semi_normal_fallback(wavejet_system(x, y, z, order), &WI::wavejet_semi_normal_kernel,
+                                            &WI::wavejet_least_squares);
+    wavejet_refused += !f.accepted;
+    unchanged = unchanged && f.unchanged;
+    wavejet_same_as_qr += f.same_as_qr;
   }
   const std::string n = std::to_string(ill.size()) + " ill-conditioned systems";
   check_printed(refused == ill.size(), "the semi-normal guards refused " + std::to_string(refused) + " of the " + n);

@@ -1018,6 +1018,17 @@ inline bool householder_least_squares(double* A, std::size_t rows, std::size_t c
   return dispatch_solver<Solver::HOUSEHOLDER_QR>(A, rows, cols, v, c);
 }
 
+/// The solver `s`, or the QR alone where CGAL_WAVEJETS_NO_SEMI_NORMAL is defined.
+constexpr Solver semi_normal_unless_disabled(Solver s)
+{
+#ifdef CGAL_WAVEJETS_NO_SEMI_NORMAL
+  (void)s;
+  return Solver::HOUSEHOLDER_QR;
+#else
+  return s;
+#endif
+}
+
 /// Scratch doubles needed by least_squares().
 inline std::size_t least_squares_scratch_size(std::size_t rows, std::size_t cols)
 {
@@ -1029,11 +1040,7 @@ inline std::size_t least_squares_scratch_size(std::size_t rows, std::size_t cols
 /// of every Wavejet fit. `scratch`: least_squares_scratch_size(rows, cols) doubles.
 inline bool least_squares(double* A, std::size_t rows, std::size_t cols, double* scratch, double* c)
 {
-#ifdef CGAL_WAVEJETS_NO_SEMI_NORMAL
-  return dispatch_solver<Solver::HOUSEHOLDER_QR>(A, rows, cols, scratch, c);
-#else
-  return dispatch_solver<Solver::SEMI_NORMAL_ELSE_QR>(A, rows, cols, scratch, c);
-#endif
+  return dispatch_solver<semi_normal_unless_disabled(Solver::SEMI_NORMAL_ELSE_QR)>(A, rows, cols, scratch, c);
 }
 
 /// Scratch doubles needed by wavejet_least_squares().
@@ -1050,11 +1057,7 @@ inline std::size_t wavejet_least_squares_scratch_size(std::size_t rows, std::siz
 /// to the QR are least_squares()'s. `scratch`: wavejet_least_squares_scratch_size(rows, cols).
 inline bool wavejet_least_squares(double* A, std::size_t rows, std::size_t cols, double* scratch, double* c)
 {
-#ifdef CGAL_WAVEJETS_NO_SEMI_NORMAL
-  return dispatch_solver<Solver::HOUSEHOLDER_QR>(A, rows, cols, scratch, c);
-#else
-  return dispatch_solver<Solver::WAVEJET_SEMI_NORMAL_ELSE_QR>(A, rows, cols, scratch, c);
-#endif
+  return dispatch_solver<semi_normal_unless_disabled(Solver::WAVEJET_SEMI_NORMAL_ELSE_QR)>(A, rows, cols, scratch, c);
 }
 
 /// The order-2 Wavejet fit of the points (x_l, y_l, h_l), l < L, by order2_moments_kernel():
