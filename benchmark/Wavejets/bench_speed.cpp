@@ -692,7 +692,7 @@ static std::string qr_comparison_row(const Points& points, std::size_t order, un
   {
     us_gram_by_dots = time_kernel(&WI::least_squares);
     us_semi_normal = time_kernel(&WI::wavejet_least_squares);
-    const bool polar = S.rows >= WI::polar_moment_minimum_rows_per_column * S.cols;
+    const bool polar = WI::uses_polar_moments(S.rows, S.cols);
     for(std::size_t q = 0; q < m; ++q)
     {
       std::copy(S.A.begin() + q * size, S.A.begin() + (q + 1) * size, work.begin());

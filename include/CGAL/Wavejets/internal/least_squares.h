@@ -388,6 +388,10 @@ CGAL_WAVEJETS_KERNEL_INLINE void gram_upper(const double* X, std::size_t P, std:
   if(i < n) column_dots(X + i * P, X, P, i, n + 1, G + i * stride);
 }
 
+/// Row stride of the semi-normal solvers' n x n triangular factors: at least n + 1 (column n holds
+/// M^T b), a whole number of blocks of four.
+inline std::size_t semi_normal_row_stride(std::size_t n) { return (n + 4) / 4 * 4; }
+
 /// Largest order K whose Gram matrix polar_moment_gram_upper() builds from polar moments.
 constexpr std::size_t polar_moment_maximum_order = 12;
 
@@ -397,8 +401,8 @@ inline std::size_t polar_power_columns(std::size_t order) { return (4 * order + 
 
 /// The Gram matrix of the order-K Wavejet basis from its polar moments mu[a * polar_power_columns(K)
 /// + c] = sum_l r_l^{2a} Z_c(l) (Z_c: the c-th real column of the powers z^m, see
-/// polar_power_columns()): each entry G[i * S + j] of the upper triangle (S = 4 ceil((B + 1) / 4), the
-/// row stride of semi_normal_kernel()) is one moment, half of one, or the half-sum or half-difference
+/// polar_power_columns()): each entry G[i * S + j] of the upper triangle (S = semi_normal_row_stride(B))
+/// is one moment, half of one, or the half-sum or half-difference
 /// of two: lists of (entry, moment) and of (entry, moment, moment) indices.
 struct Polar_moment_terms
 {
@@ -417,7 +421,7 @@ inline const Polar_moment_terms& polar_moment_terms(std::size_t order)
     std::array<Polar_moment_terms, polar_moment_maximum_order + 1> all;
     for(std::size_t K = 1; K <= polar_moment_maximum_order; ++K)
     {
-      const std::size_t B = number_of_coefficients(K), S = (B + 4) / 4 * 4, Z = polar_power_columns(K);
+      const std::size_t B = number_of_coefficients(K), S = semi_normal_row_stride(B), Z = polar_power_columns(K);
       std::vector<int> degree, frequency, is_sine; // of each column
       for(std::size_t k = 0; k <= K; ++k)
         for(std::size_t n = k % 2; n <= k; n += 2)
@@ -575,7 +579,7 @@ CGAL_WAVEJETS_KERNEL_INLINE void polar_moment_gram_upper(const double* A, std::s
     G[terms.half_sum[t]] = 0.5 * (mu[terms.half_sum[t + 1]] + mu[terms.half_sum[t + 2]]);
   for(std::size_t t = 0; t < terms.half_difference.size(); t += 3)
     G[terms.half_difference[t]] = 0.5 * (mu[terms.half_difference[t + 1]] - mu[terms.half_difference[t + 2]]);
-  const std::size_t S = (B + 4) / 4 * 4;
+  const std::size_t S = semi_normal_row_stride(B);
   double dots[(polar_moment_maximum_order + 1) * (polar_moment_maximum_order + 2) / 2];
   column_dots(A + B * P, A, P, 0, B, dots); // M^T b
   for(std::size_t i = 0; i < B; ++i) G[i * S + B] = dots[i];
@@ -642,7 +646,7 @@ constexpr double semi_normal_correction_guard = 1e-6;
 /// Scratch doubles needed by semi_normal_kernel() for a system of `cols` unknowns and `rows` rows.
 inline std::size_t semi_normal_scratch_size(std::size_t rows, std::size_t cols)
 {
-  return padded_rows(rows) + 2 * cols * ((cols + 4) / 4 * 4) + 4 * cols + 1;
+  return padded_rows(rows) + 2 * cols * semi_normal_row_stride(cols) + 4 * cols + 1;
 }
 
 /// Where semi_normal_kernel() with a Wavejet order puts polar_moment_gram_upper()'s scratch: after its
@@ -743,7 +747,7 @@ CGAL_WAVEJETS_KERNEL_INLINE bool semi_normal_solve(double* A, std::size_t rows, 
 {
   if(rows < cols || cols == 0)
     return false;
-  const std::size_t P = padded_rows(rows), n = cols, S = (n + 4) / 4 * 4; // S >= n + 1
+  const std::size_t P = padded_rows(rows), n = cols, S = semi_normal_row_stride(n);
   double* residual = scratch;      // P
   double* R = residual + P;        // n x n, row-major, row stride S
   double* Rt = R + n * S;          // its transpose, likewise
@@ -936,22 +940,29 @@ CGAL_WAVEJETS_KERNEL_INLINE bool least_squares_kernel(double* A, std::size_t row
 
 /// Fewest rows per unknown for which wavejet_least_squares_kernel() builds the Gram matrix from polar
 /// moments: their cost is mostly per unknown (the 3K power columns, the B(B+1)/2 entries), the dot
-/// products' per row. Measured on one core (AVX2 + FMA, semi-normal solve with the moments against
-/// dot by dot): 97 x 28 3.46 against 4.12 us, 120 x 36 5.36 against 6.81, 60 x 28 3.18-3.28 against
-/// 3.30-3.35, 70 x 21 2.39 against 2.42, 40 x 21 2.19-2.20 against 1.97-2.04.
+/// products' per row. Measured on one core (AVX2 + FMA, synthetic neighborhoods, the semi-normal solve
+/// with the moments against dot by dot): 97 x 28 3.37-3.49 against 4.14-4.31 us, 80 x 36 4.65 against
+/// 6.10, 70 x 21 2.41 against 2.71, 60 x 28 3.15 against 3.53; below: 45 x 28 3.17 against 3.09-3.15,
+/// 40 x 21 2.25-2.27 against 2.03-2.12.
 constexpr std::size_t polar_moment_minimum_rows_per_column = 2;
 
+/// True if wavejet_least_squares_kernel() solves a Wavejet system of `rows` x `cols` by the
+/// semi-normal equations with the Gram matrix from polar moments (before its guards decide).
+inline bool uses_polar_moments(std::size_t rows, std::size_t cols)
+{
+  return cols >= semi_normal_minimum_columns && rows >= polar_moment_minimum_rows_per_column * cols &&
+         polar_moment_order(cols) > 0;
+}
+
 /// least_squares_kernel() for the Wavejet systems of evaluate_basis_columns() (cols = (K+1)(K+2)/2
-/// unknowns): the semi-normal equations' Gram matrix from polar moments up to
-/// polar_moment_maximum_order and from polar_moment_minimum_rows_per_column, dot by dot otherwise.
-/// `scratch`: wavejet_least_squares_scratch_size().
+/// unknowns): the semi-normal equations' Gram matrix from polar moments where uses_polar_moments(),
+/// dot by dot otherwise. `scratch`: wavejet_least_squares_scratch_size().
 CGAL_WAVEJETS_KERNEL_INLINE bool wavejet_least_squares_kernel(double* A, std::size_t rows, std::size_t cols,
                                                              double* scratch, double* c)
 {
-  const bool moments = rows >= polar_moment_minimum_rows_per_column * cols && polar_moment_order(cols) > 0;
-  return (cols >= semi_normal_minimum_columns && (moments ? wavejet_semi_normal_kernel(A, rows, cols, scratch, c)
-                                                          : semi_normal_kernel(A, rows, cols, scratch, c))) ||
-         householder_kernel(A, rows, cols, scratch, c);
+  if(!uses_polar_moments(rows, cols))
+    return least_squares_kernel(A, rows, cols, scratch, c);
+  return wavejet_semi_normal_kernel(A, rows, cols, scratch, c) || householder_kernel(A, rows, cols, scratch, c);
 }
 
 /// The solvers the dispatch below serves.
