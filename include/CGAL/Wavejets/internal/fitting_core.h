@@ -100,19 +100,27 @@ struct Moments_kernel
     const std::size_t P = padded_rows(L);
     const double* coordinate[3] = {coordinates, coordinates + P, coordinates + 2 * P};
     const Double4 zero = {0., 0., 0., 0.};
-    Double4 first[3] = {zero, zero, zero}, second[6] = {zero, zero, zero, zero, zero, zero};
+    // One named accumulator per sum (arrays of them were kept in memory by g++: a store and a
+    // reload per update).
+    Double4 sx = zero, sy = zero, sz = zero, sxx = zero, sxy = zero, sxz = zero, syy = zero, syz = zero, szz = zero;
     for(std::size_t l = 0; l < P; l += 4)
     {
-      Double4 d[3];
-      for(int i = 0; i < 3; ++i) load4(d[i], coordinate[i] + l);
-      for(int i = 0, k = 0; i < 3; ++i)
-      {
-        first[i] += d[i];
-        for(int j = i; j < 3; ++j, ++k) second[k] += d[i] * d[j];
-      }
+      Double4 x, y, z;
+      load4(x, coordinate[0] + l);
+      load4(y, coordinate[1] + l);
+      load4(z, coordinate[2] + l);
+      sx += x;
+      sy += y;
+      sz += z;
+      sxx += x * x;
+      sxy += x * y;
+      sxz += x * z;
+      syy += y * y;
+      syz += y * z;
+      szz += z * z;
     }
-    for(int i = 0; i < 3; ++i) sums[i] = reduce4(first[i]);
-    for(int k = 0; k < 6; ++k) sums[3 + k] = reduce4(second[k]);
+    const Double4 all[9] = {sx, sy, sz, sxx, sxy, sxz, syy, syz, szz};
+    for(int k = 0; k < 9; ++k) sums[k] = reduce4(all[k]);
   }
 };
 

@@ -33,6 +33,14 @@
 #define CGAL_WAVEJETS_TARGET(instruction_sets)
 #endif
 
+/// Asks the compiler to unroll the next loop completely (loops of a size known at compile time,
+/// whose arrays then live in registers instead of memory).
+#if defined(__clang__) || (defined(__GNUC__) && __GNUC__ >= 8)
+#define CGAL_WAVEJETS_UNROLL _Pragma("GCC unroll 16")
+#else
+#define CGAL_WAVEJETS_UNROLL
+#endif
+
 namespace CGAL {
 namespace Wavejets {
 namespace internal {

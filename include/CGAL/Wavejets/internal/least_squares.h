@@ -805,19 +805,109 @@ CGAL_WAVEJETS_KERNEL_INLINE bool wavejet_semi_normal_kernel(double* A, std::size
 /// Unknowns of an order-2 Wavejet: 1, x, y, x^2 + y^2, x^2 - y^2, 2 x y (basis.h's columns).
 constexpr std::size_t order2_columns = 6;
 
+/// The corrected semi-normal solve of a system of N unknowns given by its Gram matrix, at sizes
+/// known at compile time (the order-2 fit: N = 6), in scalar code the compiler unrolls: the same
+/// steps, guards and arithmetic as semi_normal_factor_and_solve() and semi_normal_refine() (the
+/// column scales D, the Cholesky factor of D G D, the two triangular solves, the refinement), without
+/// their vectorized row updates, whose stores and reloads of single entries cost more than the
+/// arithmetic at this size.
+template <std::size_t N>
+struct Small_semi_normal
+{
+  double R[N][N]; // upper Cholesky factor of D G D (row i: R(i, i..N-1))
+  double scale[N], inverse_diagonal[N];
+
+  /// Factors G (upper triangle of `gram`) and solves G c = `rhs` into `c`; false if a diagonal
+  /// entry is not positive and finite or a scaled pivot is below semi_normal_pivot_guard.
+  CGAL_WAVEJETS_KERNEL_INLINE bool factor_and_solve(const double (&gram)[N][N], const double* rhs, double* c)
+  {
+    CGAL_WAVEJETS_UNROLL
+    for(std::size_t i = 0; i < N; ++i)
+    {
+      if(!(gram[i][i] > 0.) || !std::isfinite(gram[i][i]))
+        return false;
+      scale[i] = 1. / std::sqrt(gram[i][i]);
+    }
+    CGAL_WAVEJETS_UNROLL
+    for(std::size_t i = 0; i < N; ++i)
+      CGAL_WAVEJETS_UNROLL
+      for(std::size_t j = i; j < N; ++j) R[i][j] = gram[i][j] * (scale[i] * scale[j]);
+    CGAL_WAVEJETS_UNROLL
+    for(std::size_t i = 0; i < N; ++i)
+    {
+      if(!(R[i][i] > semi_normal_pivot_guard * semi_normal_pivot_guard))
+        return false;
+      R[i][i] = std::sqrt(R[i][i]);
+      inverse_diagonal[i] = 1. / R[i][i];
+      CGAL_WAVEJETS_UNROLL
+      for(std::size_t j = i + 1; j < N; ++j) R[i][j] *= inverse_diagonal[i];
+      CGAL_WAVEJETS_UNROLL
+      for(std::size_t j = i + 1; j < N; ++j)
+        CGAL_WAVEJETS_UNROLL
+        for(std::size_t k = j; k < N; ++k) R[j][k] -= R[i][j] * R[i][k];
+    }
+    double x[N];
+    CGAL_WAVEJETS_UNROLL
+    for(std::size_t i = 0; i < N; ++i) x[i] = rhs[i] * scale[i];
+    solve(x);
+    CGAL_WAVEJETS_UNROLL
+    for(std::size_t j = 0; j < N; ++j) c[j] = x[j] * scale[j];
+    return true;
+  }
+
+  /// The refinement: `correction` holds M^T r (r = b - M c); adds the solution dx to `c`. False if
+  /// dx exceeds semi_normal_correction_guard times c.
+  CGAL_WAVEJETS_KERNEL_INLINE bool refine(const double* correction, double* c) const
+  {
+    double x[N];
+    CGAL_WAVEJETS_UNROLL
+    for(std::size_t i = 0; i < N; ++i) x[i] = correction[i] * scale[i];
+    solve(x);
+    double largest_x = 0., largest_dx = 0.;
+    CGAL_WAVEJETS_UNROLL
+    for(std::size_t j = 0; j < N; ++j)
+    {
+      const double dx = x[j] * scale[j];
+      c[j] += dx;
+      largest_x = (std::max)(largest_x, std::abs(c[j]));
+      largest_dx = (std::max)(largest_dx, std::abs(dx));
+    }
+    return largest_dx <= semi_normal_correction_guard * largest_x && std::isfinite(largest_x);
+  }
+
+private:
+  /// x = (R^T R)^-1 x.
+  CGAL_WAVEJETS_KERNEL_INLINE void solve(double* x) const
+  {
+    CGAL_WAVEJETS_UNROLL
+    for(std::size_t i = 0; i < N; ++i)
+    {
+      x[i] *= inverse_diagonal[i];
+      CGAL_WAVEJETS_UNROLL
+      for(std::size_t j = i + 1; j < N; ++j) x[j] -= R[i][j] * x[i];
+    }
+    CGAL_WAVEJETS_UNROLL
+    for(std::size_t k = 0; k < N; ++k)
+    {
+      const std::size_t i = N - 1 - k;
+      x[i] *= inverse_diagonal[i];
+      CGAL_WAVEJETS_UNROLL
+      for(std::size_t j = 0; j < i; ++j) x[j] -= R[j][i] * x[i];
+    }
+  }
+};
+
 /// The order-2 Wavejet least squares min || M c - h || (M's rows: the basis above at (x_l, y_l),
-/// l < L), by the corrected semi-normal equations of semi_normal_kernel() without building M:
+/// l < L), by the corrected semi-normal equations (Small_semi_normal) without building M:
 /// M^T M and M^T h are sums of the moments sum x^p y^q (p + q <= 4) and sum x^p y^q h (p + q <= 2),
-/// gathered in one pass over the points; the refinement's residuals re-evaluate the rows in a
-/// second pass. `X` holds three columns x, y, h of stride padded_rows(L), zero on the padding
+/// gathered in two passes over the points; the refinement's residuals re-evaluate the rows in a
+/// third pass. `X` holds three columns x, y, h of stride padded_rows(L), zero on the padding
 /// rows. The same guards as semi_normal_kernel(): false (c undefined) sends the system to the
 /// general solver. Measured in results.md's least-squares table (101 points: the moments against
 /// the QR of the built system).
 CGAL_WAVEJETS_KERNEL_INLINE bool order2_moments_kernel(const double* X, std::size_t L, double* c)
 {
-  // Sizes as types: the factorization and the solves below are compiled for 6 unknowns (unrolled).
-  constexpr std::integral_constant<std::size_t, order2_columns> n{};
-  constexpr std::integral_constant<std::size_t, 8> S{};
+  constexpr std::size_t n = order2_columns;
   if(L < n)
     return false;
   const std::size_t P = padded_rows(L);
@@ -825,63 +915,67 @@ CGAL_WAVEJETS_KERNEL_INLINE bool order2_moments_kernel(const double* X, std::siz
   const double* y = X + P;
   const double* h = X + 2 * P;
   const Double4 zero = {0., 0., 0., 0.};
-  // Moments: m[0..13] = sum x^p y^q, named x1, y1, ..., y4 below; t[0..5] = sum x^p y^q h for
-  // x^p y^q = 1, x, y, x^2, xy, y^2. Three passes over the points, so that each pass's accumulators
-  // stay in registers.
-  Double4 m[14], t[6];
-  for(Double4& a : m) a = zero;
-  for(Double4& a : t) a = zero;
+  // Moments, one named accumulator each (two passes, so that each pass's accumulators stay in
+  // registers): sum x^p y^q for p + q <= 4 and sum x^p y^q h for p + q <= 2.
+  Double4 sx = zero, sy = zero, sxx = zero, sxy = zero, syy = zero, sxxx = zero, sxxy = zero, sxyy = zero,
+          syyy = zero;
   for(std::size_t l = 0; l < P; l += 4)
   {
     Double4 xv, yv;
     load4(xv, x + l);
     load4(yv, y + l);
     const Double4 xxv = xv * xv, xyv = xv * yv, yyv = yv * yv;
-    m[0] += xv;         m[1] += yv;
-    m[2] += xxv;        m[3] += xyv;         m[4] += yyv;
-    m[5] += xxv * xv;   m[6] += xxv * yv;    m[7] += yyv * xv;    m[8] += yyv * yv;
+    sx += xv;
+    sy += yv;
+    sxx += xxv;
+    sxy += xyv;
+    syy += yyv;
+    sxxx += xxv * xv;
+    sxxy += xxv * yv;
+    sxyy += yyv * xv;
+    syyy += yyv * yv;
   }
-  for(std::size_t l = 0; l < P; l += 4)
-  {
-    Double4 xv, yv;
-    load4(xv, x + l);
-    load4(yv, y + l);
-    const Double4 xxv = xv * xv, xyv = xv * yv, yyv = yv * yv;
-    m[9] += xxv * xxv;  m[10] += xxv * xyv;  m[11] += xxv * yyv;  m[12] += yyv * xyv;  m[13] += yyv * yyv;
-  }
+  Double4 sxxxx = zero, sxxxy = zero, sxxyy = zero, sxyyy = zero, syyyy = zero, sh = zero, sxh = zero, syh = zero,
+          sxxh = zero, sxyh = zero, syyh = zero;
   for(std::size_t l = 0; l < P; l += 4)
   {
     Double4 xv, yv, hv;
     load4(xv, x + l);
     load4(yv, y + l);
     load4(hv, h + l);
-    t[0] += hv;                t[1] += xv * hv;           t[2] += yv * hv;
-    t[3] += (xv * xv) * hv;    t[4] += (xv * yv) * hv;    t[5] += (yv * yv) * hv;
+    const Double4 xxv = xv * xv, xyv = xv * yv, yyv = yv * yv;
+    sxxxx += xxv * xxv;
+    sxxxy += xxv * xyv;
+    sxxyy += xxv * yyv;
+    sxyyy += yyv * xyv;
+    syyyy += yyv * yyv;
+    sh += hv;
+    sxh += xv * hv;
+    syh += yv * hv;
+    sxxh += xxv * hv;
+    sxyh += xyv * hv;
+    syyh += yyv * hv;
   }
-  double s[14], th[6];
-  for(int i = 0; i < 14; ++i) s[i] = reduce4(m[i]);
-  for(int i = 0; i < 6; ++i) th[i] = reduce4(t[i]);
-  const double x1 = s[0], y1 = s[1], x2 = s[2], xy = s[3], y2 = s[4], x3 = s[5], x2y = s[6], xy2 = s[7],
-               y3 = s[8], x4 = s[9], x3y = s[10], x2y2 = s[11], xy3 = s[12], y4 = s[13];
+  const double x1 = reduce4(sx), y1 = reduce4(sy), x2 = reduce4(sxx), xy = reduce4(sxy), y2 = reduce4(syy),
+               x3 = reduce4(sxxx), x2y = reduce4(sxxy), xy2 = reduce4(sxyy), y3 = reduce4(syyy), x4 = reduce4(sxxxx),
+               x3y = reduce4(sxxxy), x2y2 = reduce4(sxxyy), xy3 = reduce4(sxyyy), y4 = reduce4(syyyy);
+  const double th[6] = {reduce4(sh), reduce4(sxh), reduce4(syh), reduce4(sxxh), reduce4(sxyh), reduce4(syyh)};
   // Gram matrix of the columns (1, x, y, x^2 + y^2, x^2 - y^2, 2xy), upper triangle, and M^T h.
-  double R[n * S], Rt[n * S];
-  const double gram[n][n + 1] = {
-    {double(L), x1, y1, x2 + y2, x2 - y2, 2. * xy, th[0]},
-    {0., x2, xy, x3 + xy2, x3 - xy2, 2. * x2y, th[1]},
-    {0., 0., y2, x2y + y3, x2y - y3, 2. * xy2, th[2]},
-    {0., 0., 0., x4 + 2. * x2y2 + y4, x4 - y4, 2. * (x3y + xy3), th[3] + th[5]},
-    {0., 0., 0., 0., x4 - 2. * x2y2 + y4, 2. * (x3y - xy3), th[3] - th[5]},
-    {0., 0., 0., 0., 0., 4. * x2y2, 2. * th[4]}};
-  for(std::size_t i = 0; i < n; ++i)
-    for(std::size_t j = i; j <= n; ++j) R[i * S + j] = gram[i][j];
-  double scale[n], inverse_diagonal[n], rhs[n], correction[n];
-  if(!semi_normal_factor_and_solve(R, Rt, scale, inverse_diagonal, rhs, n, S, c))
+  const double gram[n][n] = {{double(L), x1, y1, x2 + y2, x2 - y2, 2. * xy},
+                             {0., x2, xy, x3 + xy2, x3 - xy2, 2. * x2y},
+                             {0., 0., y2, x2y + y3, x2y - y3, 2. * xy2},
+                             {0., 0., 0., x4 + 2. * x2y2 + y4, x4 - y4, 2. * (x3y + xy3)},
+                             {0., 0., 0., 0., x4 - 2. * x2y2 + y4, 2. * (x3y - xy3)},
+                             {0., 0., 0., 0., 0., 4. * x2y2}};
+  const double rhs[n] = {th[0], th[1], th[2], th[3] + th[5], th[3] - th[5], 2. * th[4]};
+  Small_semi_normal<n> solver;
+  if(!solver.factor_and_solve(gram, rhs, c))
     return false;
-  // Refinement: r = h - M c in a second pass, M^T r, solve, c += dc.
+  // Refinement: r = h - M c in a third pass, M^T r, solve, c += dc.
   const Double4 c0 = zero + c[0], c1 = zero + c[1], c2 = zero + c[2], cxx = zero + (c[3] + c[4]),
                 cyy = zero + (c[3] - c[4]), cxy = zero + 2. * c[5];
-  Double4 u[6];
-  for(Double4& a : u) a = zero;
+  Double4 u0 = zero, u1 = zero, u2 = zero, u3 = zero, u4 = zero, u5 = zero;
+  const std::size_t whole = L / 4 * 4; // rows where the constant column is 1 in every lane
   for(std::size_t l = 0; l < P; l += 4)
   {
     Double4 xv, yv, r;
@@ -894,7 +988,7 @@ CGAL_WAVEJETS_KERNEL_INLINE bool order2_moments_kernel(const double* X, std::siz
     r -= cxx * xxv;
     r -= cyy * yyv;
     r -= cxy * xyv;
-    if(l + 4 <= L)
+    if(l < whole)
       r -= c0;
     else // the constant column is 1 on the rows l < L only
     {
@@ -904,20 +998,16 @@ CGAL_WAVEJETS_KERNEL_INLINE bool order2_moments_kernel(const double* X, std::siz
       load4(ones, lanes);
       r -= ones;
     }
-    u[0] += r;
-    u[1] += xv * r;
-    u[2] += yv * r;
-    u[3] += xxv * r;
-    u[4] += xyv * r;
-    u[5] += yyv * r;
+    u0 += r;
+    u1 += xv * r;
+    u2 += yv * r;
+    u3 += xxv * r;
+    u4 += xyv * r;
+    u5 += yyv * r;
   }
-  correction[0] = reduce4(u[0]);
-  correction[1] = reduce4(u[1]);
-  correction[2] = reduce4(u[2]);
-  correction[3] = reduce4(u[3]) + reduce4(u[5]);
-  correction[4] = reduce4(u[3]) - reduce4(u[5]);
-  correction[5] = 2. * reduce4(u[4]);
-  return semi_normal_refine(R, Rt, scale, inverse_diagonal, n, S, correction, c);
+  const double correction[n] = {reduce4(u0), reduce4(u1), reduce4(u2), reduce4(u3) + reduce4(u5),
+                                reduce4(u3) - reduce4(u5), 2. * reduce4(u4)};
+  return solver.refine(correction, c);
 }
 
 /// Fewest unknowns for which least_squares_kernel() tries the semi-normal equations: 21 (order 5).
