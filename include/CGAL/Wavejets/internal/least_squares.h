@@ -805,53 +805,49 @@ CGAL_WAVEJETS_KERNEL_INLINE bool wavejet_semi_normal_kernel(double* A, std::size
 /// Unknowns of an order-2 Wavejet: 1, x, y, x^2 + y^2, x^2 - y^2, 2 x y (basis.h's columns).
 constexpr std::size_t order2_columns = 6;
 
-/// The corrected semi-normal solve of a system of N unknowns given by its Gram matrix, at sizes
-/// known at compile time (the order-2 fit: N = 6), in scalar code the compiler unrolls: the same
-/// steps, guards and arithmetic as semi_normal_factor_and_solve() and semi_normal_refine() (the
-/// column scales D, the Cholesky factor of D G D, the two triangular solves, the refinement), without
-/// their vectorized row updates, whose stores and reloads of single entries cost more than the
-/// arithmetic at this size.
+/// The corrected semi-normal solve of a system of N unknowns given by its Gram matrix G, at sizes
+/// known at compile time (the order-2 fit: N = 6), in scalar code the compiler unrolls (the
+/// factor stays in registers; the generic kernels' vectorized row updates store and reload single
+/// entries, which costs more than the arithmetic at this size). The factorization is G = U^T E U
+/// (U unit upper triangular, E diagonal: Cholesky without square roots), whose pivots are those of
+/// the Cholesky factor squared: the same guards as semi_normal_factor_and_solve() (a pivot of the
+/// column-scaled matrix D G D, D = diag(1 / sqrt(G(i, i))), below semi_normal_pivot_guard^2 refuses
+/// the system, i.e. E(i) below that times G(i, i), with no scaling done) and semi_normal_refine().
 template <std::size_t N>
 struct Small_semi_normal
 {
-  double R[N][N]; // upper Cholesky factor of D G D (row i: R(i, i..N-1))
-  double scale[N], inverse_diagonal[N];
+  double U[N][N]; // row i: U(i, i+1..N-1)
+  double inverse_pivot[N]; // 1 / E(i)
 
   /// Factors G (upper triangle of `gram`) and solves G c = `rhs` into `c`; false if a diagonal
-  /// entry is not positive and finite or a scaled pivot is below semi_normal_pivot_guard.
+  /// entry is not positive and finite or a scaled pivot is below semi_normal_pivot_guard^2.
   CGAL_WAVEJETS_KERNEL_INLINE bool factor_and_solve(const double (&gram)[N][N], const double* rhs, double* c)
   {
+    double A[N][N];
     CGAL_WAVEJETS_UNROLL
     for(std::size_t i = 0; i < N; ++i)
     {
       if(!(gram[i][i] > 0.) || !std::isfinite(gram[i][i]))
         return false;
-      scale[i] = 1. / std::sqrt(gram[i][i]);
-    }
-    CGAL_WAVEJETS_UNROLL
-    for(std::size_t i = 0; i < N; ++i)
       CGAL_WAVEJETS_UNROLL
-      for(std::size_t j = i; j < N; ++j) R[i][j] = gram[i][j] * (scale[i] * scale[j]);
+      for(std::size_t j = i; j < N; ++j) A[i][j] = gram[i][j];
+    }
     CGAL_WAVEJETS_UNROLL
     for(std::size_t i = 0; i < N; ++i)
     {
-      if(!(R[i][i] > semi_normal_pivot_guard * semi_normal_pivot_guard))
+      if(!(A[i][i] > (semi_normal_pivot_guard * semi_normal_pivot_guard) * gram[i][i]))
         return false;
-      R[i][i] = std::sqrt(R[i][i]);
-      inverse_diagonal[i] = 1. / R[i][i];
+      inverse_pivot[i] = 1. / A[i][i];
       CGAL_WAVEJETS_UNROLL
-      for(std::size_t j = i + 1; j < N; ++j) R[i][j] *= inverse_diagonal[i];
+      for(std::size_t j = i + 1; j < N; ++j) U[i][j] = A[i][j] * inverse_pivot[i];
       CGAL_WAVEJETS_UNROLL
       for(std::size_t j = i + 1; j < N; ++j)
         CGAL_WAVEJETS_UNROLL
-        for(std::size_t k = j; k < N; ++k) R[j][k] -= R[i][j] * R[i][k];
+        for(std::size_t k = j; k < N; ++k) A[j][k] -= U[i][j] * A[i][k];
     }
-    double x[N];
     CGAL_WAVEJETS_UNROLL
-    for(std::size_t i = 0; i < N; ++i) x[i] = rhs[i] * scale[i];
-    solve(x);
-    CGAL_WAVEJETS_UNROLL
-    for(std::size_t j = 0; j < N; ++j) c[j] = x[j] * scale[j];
+    for(std::size_t i = 0; i < N; ++i) c[i] = rhs[i];
+    solve(c);
     return true;
   }
 
@@ -859,40 +855,37 @@ struct Small_semi_normal
   /// dx exceeds semi_normal_correction_guard times c.
   CGAL_WAVEJETS_KERNEL_INLINE bool refine(const double* correction, double* c) const
   {
-    double x[N];
+    double dx[N];
     CGAL_WAVEJETS_UNROLL
-    for(std::size_t i = 0; i < N; ++i) x[i] = correction[i] * scale[i];
-    solve(x);
+    for(std::size_t i = 0; i < N; ++i) dx[i] = correction[i];
+    solve(dx);
     double largest_x = 0., largest_dx = 0.;
     CGAL_WAVEJETS_UNROLL
     for(std::size_t j = 0; j < N; ++j)
     {
-      const double dx = x[j] * scale[j];
-      c[j] += dx;
+      c[j] += dx[j];
       largest_x = (std::max)(largest_x, std::abs(c[j]));
-      largest_dx = (std::max)(largest_dx, std::abs(dx));
+      largest_dx = (std::max)(largest_dx, std::abs(dx[j]));
     }
     return largest_dx <= semi_normal_correction_guard * largest_x && std::isfinite(largest_x);
   }
 
 private:
-  /// x = (R^T R)^-1 x.
+  /// x = (U^T E U)^-1 x.
   CGAL_WAVEJETS_KERNEL_INLINE void solve(double* x) const
   {
     CGAL_WAVEJETS_UNROLL
-    for(std::size_t i = 0; i < N; ++i)
-    {
-      x[i] *= inverse_diagonal[i];
+    for(std::size_t i = 0; i < N; ++i) // U^T z = x
       CGAL_WAVEJETS_UNROLL
-      for(std::size_t j = i + 1; j < N; ++j) x[j] -= R[i][j] * x[i];
-    }
+      for(std::size_t j = i + 1; j < N; ++j) x[j] -= U[i][j] * x[i];
     CGAL_WAVEJETS_UNROLL
-    for(std::size_t k = 0; k < N; ++k)
+    for(std::size_t i = 0; i < N; ++i) x[i] *= inverse_pivot[i];
+    CGAL_WAVEJETS_UNROLL
+    for(std::size_t k = 0; k < N; ++k) // U x = E^-1 z
     {
       const std::size_t i = N - 1 - k;
-      x[i] *= inverse_diagonal[i];
       CGAL_WAVEJETS_UNROLL
-      for(std::size_t j = 0; j < i; ++j) x[j] -= R[j][i] * x[i];
+      for(std::size_t j = 0; j < i; ++j) x[j] -= U[j][i] * x[i];
     }
   }
 };
