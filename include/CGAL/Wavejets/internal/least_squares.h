@@ -890,6 +890,37 @@ private:
   }
 };
 
+/// Sums over points of v, x v, y v, x^2 v, x y v and y^2 v, four lanes each (named members: the
+/// compiler keeps them in registers): M^T v for the order-2 Wavejet basis, from the monomials of
+/// degree at most 2 (basis_products()). Gathers M^T h, and M^T r in the refinement.
+struct Quadratic_moments
+{
+  Double4 one, x, y, xx, xy, yy;
+
+  CGAL_WAVEJETS_KERNEL_INLINE void add(const Double4& xv, const Double4& yv, const Double4& xxv, const Double4& xyv,
+                                       const Double4& yyv, const Double4& v)
+  {
+    one += v;
+    x += xv * v;
+    y += yv * v;
+    xx += xxv * v;
+    xy += xyv * v;
+    yy += yyv * v;
+  }
+
+  /// M^T v in the order of the basis (1, x, y, x^2 + y^2, x^2 - y^2, 2xy).
+  CGAL_WAVEJETS_KERNEL_INLINE void basis_products(double* out) const
+  {
+    const double sxx = reduce4(xx), syy = reduce4(yy);
+    out[0] = reduce4(one);
+    out[1] = reduce4(x);
+    out[2] = reduce4(y);
+    out[3] = sxx + syy;
+    out[4] = sxx - syy;
+    out[5] = 2. * reduce4(xy);
+  }
+};
+
 /// The order-2 Wavejet least squares min || M c - h || (M's rows: the basis above at (x_l, y_l),
 /// l < L), by the corrected semi-normal equations (Small_semi_normal) without building M:
 /// M^T M and M^T h are sums of the moments sum x^p y^q (p + q <= 4) and sum x^p y^q h (p + q <= 2),
@@ -928,8 +959,8 @@ CGAL_WAVEJETS_KERNEL_INLINE bool order2_moments_kernel(const double* X, std::siz
     sxyy += yyv * xv;
     syyy += yyv * yv;
   }
-  Double4 sxxxx = zero, sxxxy = zero, sxxyy = zero, sxyyy = zero, syyyy = zero, sh = zero, sxh = zero, syh = zero,
-          sxxh = zero, sxyh = zero, syyh = zero;
+  Double4 sxxxx = zero, sxxxy = zero, sxxyy = zero, sxyyy = zero, syyyy = zero;
+  Quadratic_moments heights = {zero, zero, zero, zero, zero, zero};
   for(std::size_t l = 0; l < P; l += 4)
   {
     Double4 xv, yv, hv;
@@ -942,17 +973,11 @@ CGAL_WAVEJETS_KERNEL_INLINE bool order2_moments_kernel(const double* X, std::siz
     sxxyy += xxv * yyv;
     sxyyy += yyv * xyv;
     syyyy += yyv * yyv;
-    sh += hv;
-    sxh += xv * hv;
-    syh += yv * hv;
-    sxxh += xxv * hv;
-    sxyh += xyv * hv;
-    syyh += yyv * hv;
+    heights.add(xv, yv, xxv, xyv, yyv, hv);
   }
   const double x1 = reduce4(sx), y1 = reduce4(sy), x2 = reduce4(sxx), xy = reduce4(sxy), y2 = reduce4(syy),
                x3 = reduce4(sxxx), x2y = reduce4(sxxy), xy2 = reduce4(sxyy), y3 = reduce4(syyy), x4 = reduce4(sxxxx),
                x3y = reduce4(sxxxy), x2y2 = reduce4(sxxyy), xy3 = reduce4(sxyyy), y4 = reduce4(syyyy);
-  const double th[6] = {reduce4(sh), reduce4(sxh), reduce4(syh), reduce4(sxxh), reduce4(sxyh), reduce4(syyh)};
   // Gram matrix of the columns (1, x, y, x^2 + y^2, x^2 - y^2, 2xy), upper triangle, and M^T h.
   const double gram[n][n] = {{double(L), x1, y1, x2 + y2, x2 - y2, 2. * xy},
                              {0., x2, xy, x3 + xy2, x3 - xy2, 2. * x2y},
@@ -960,14 +985,15 @@ CGAL_WAVEJETS_KERNEL_INLINE bool order2_moments_kernel(const double* X, std::siz
                              {0., 0., 0., x4 + 2. * x2y2 + y4, x4 - y4, 2. * (x3y + xy3)},
                              {0., 0., 0., 0., x4 - 2. * x2y2 + y4, 2. * (x3y - xy3)},
                              {0., 0., 0., 0., 0., 4. * x2y2}};
-  const double rhs[n] = {th[0], th[1], th[2], th[3] + th[5], th[3] - th[5], 2. * th[4]};
+  double rhs[n];
+  heights.basis_products(rhs);
   Small_semi_normal<n> solver;
   if(!solver.factor_and_solve(gram, rhs, c))
     return false;
   // Refinement: r = h - M c in a third pass, M^T r, solve, c += dc.
   const Double4 c0 = zero + c[0], c1 = zero + c[1], c2 = zero + c[2], cxx = zero + (c[3] + c[4]),
                 cyy = zero + (c[3] - c[4]), cxy = zero + 2. * c[5];
-  Double4 u0 = zero, u1 = zero, u2 = zero, u3 = zero, u4 = zero, u5 = zero;
+  Quadratic_moments residuals = {zero, zero, zero, zero, zero, zero};
   const std::size_t whole = L / 4 * 4; // rows where the constant column is 1 in every lane
   for(std::size_t l = 0; l < P; l += 4)
   {
@@ -991,15 +1017,10 @@ CGAL_WAVEJETS_KERNEL_INLINE bool order2_moments_kernel(const double* X, std::siz
       load4(ones, lanes);
       r -= ones;
     }
-    u0 += r;
-    u1 += xv * r;
-    u2 += yv * r;
-    u3 += xxv * r;
-    u4 += xyv * r;
-    u5 += yyv * r;
+    residuals.add(xv, yv, xxv, xyv, yyv, r);
   }
-  const double correction[n] = {reduce4(u0), reduce4(u1), reduce4(u2), reduce4(u3) + reduce4(u5),
-                                reduce4(u3) - reduce4(u5), 2. * reduce4(u4)};
+  double correction[n];
+  residuals.basis_products(correction);
   return solver.refine(correction, c);
 }
 
