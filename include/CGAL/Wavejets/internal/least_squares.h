@@ -614,25 +614,20 @@ CGAL_WAVEJETS_KERNEL_INLINE void subtract_multiple(double* y, const double* x, d
   for(l = subtract_multiple_blocks(y, x, a, l, end); l < end; ++l) y[l] -= a * x[l];
 }
 
-/// Solves R^T R x = y in place: R upper triangular n x n, row-major with row stride S in `R` (row
-/// i: R(i, i..n-1)), `Rt` its transpose likewise (row i: R(0..i, i)), `inverse_diagonal` 1 / R(i, i).
-/// Both triangular solves subtract, per unknown, a multiple of a row from the remaining right-hand
-/// side: independent multiply-adds that vectorize, instead of one latency-bound dot product per
-/// unknown.
+/// Solves U^T E U x = y in place: U unit upper triangular n x n, row-major with row stride S in
+/// `U` (row i: U(i, i+1..n-1); the diagonal is not read), `Ut` its transpose likewise (row i:
+/// U(0..i-1, i)), `inverse_pivot` 1 / E(i). Both triangular solves subtract, per unknown, a multiple
+/// of a row from the remaining right-hand side: independent multiply-adds that vectorize, instead of
+/// one latency-bound dot product per unknown.
 template <class Count, class Stride>
-CGAL_WAVEJETS_KERNEL_INLINE void cholesky_solve(const double* R, const double* Rt, const double* inverse_diagonal,
-                                               Count n, Stride S, double* x)
+CGAL_WAVEJETS_KERNEL_INLINE void factored_solve(const double* U, const double* Ut, const double* inverse_pivot, Count n,
+                                               Stride S, double* x)
 {
-  for(std::size_t i = 0; i < n; ++i) // R^T z = y
-  {
-    x[i] *= inverse_diagonal[i];
-    subtract_multiple(x, R + i * S, x[i], i + 1, n);
-  }
-  for(std::size_t i = n; i-- > 0;) // R x = z
-  {
-    x[i] *= inverse_diagonal[i];
-    subtract_multiple(x, Rt + i * S, x[i], 0, i);
-  }
+  for(std::size_t i = 0; i < n; ++i) // U^T z = y
+    subtract_multiple(x, U + i * S, x[i], i + 1, n);
+  for(std::size_t i = 0; i < n; ++i) x[i] *= inverse_pivot[i];
+  for(std::size_t i = n; i-- > 0;) // U x = E^-1 z
+    subtract_multiple(x, Ut + i * S, x[i], 0, i);
 }
 
 /// Smallest Cholesky pivot of the column-scaled Gram matrix D M^T M D (unit diagonal) accepted by
@@ -664,12 +659,14 @@ inline std::size_t wavejet_semi_normal_scratch_size(std::size_t rows, std::size_
 
 /// The solve shared by the semi-normal solvers, from the Gram matrix G = M^T M (upper triangle,
 /// row-major with row stride S in `R`, S >= n + 1) and M^T b (in R's column n): the column scales
-/// `scale` (D = diag(1 / sqrt(G(i, i)))), the Cholesky factor of D G D (overwriting G in `R`, its
-/// transpose in `Rt`, 1 / its diagonal in `inverse_diagonal`) and the first solution x into `c`.
-/// `rhs`: n scratch doubles. Returns false if G has a non-positive or non-finite diagonal entry
-/// or a scaled pivot is below semi_normal_pivot_guard.
+/// `scale` (D = diag(1 / sqrt(G(i, i)))), the factor U^T E U of D G D (the Cholesky factor without
+/// its square roots: U unit upper triangular, E diagonal, E(i) the squared Cholesky pivot), U
+/// overwriting G in `R` with E on its diagonal, its transpose in `Rt`, 1 / E in `inverse_pivot`,
+/// and the first solution x into `c`. `rhs`: n scratch doubles. Returns false if G has a
+/// non-positive or non-finite diagonal entry or a scaled Cholesky pivot is below
+/// semi_normal_pivot_guard (E(i) below its square).
 template <class Count, class Stride>
-CGAL_WAVEJETS_KERNEL_INLINE bool semi_normal_factor_and_solve(double* R, double* Rt, double* scale, double* inverse_diagonal,
+CGAL_WAVEJETS_KERNEL_INLINE bool semi_normal_factor_and_solve(double* R, double* Rt, double* scale, double* inverse_pivot,
                                                              double* rhs, Count n, Stride S, double* c)
 {
   for(std::size_t i = 0; i < n; ++i)
@@ -679,11 +676,12 @@ CGAL_WAVEJETS_KERNEL_INLINE bool semi_normal_factor_and_solve(double* R, double*
     scale[i] = 1. / std::sqrt(R[i * S + i]);
     rhs[i] = R[i * S + n] * scale[i];
   }
-  // Cholesky of D M^T M D (row-major upper R, overwriting the Gram matrix), right-looking: each
-  // pivot row updates the trailing rows with independent multiply-adds, over whole blocks of four
-  // columns (from the block of the diagonal to the one of column n - 1): the entries left of the
-  // diagonal and right of column n - 1 in those blocks are set to zero first and are never read,
-  // so the factor is the one the element-wise update gives, bit for bit, with no scalar head or tail.
+  // U^T E U of D M^T M D (row-major, overwriting the Gram matrix), right-looking: each pivot row
+  // updates the trailing rows with independent multiply-adds, over whole blocks of four columns
+  // (from the block of the diagonal to the one of column n - 1): the entries left of the diagonal
+  // and right of column n - 1 in those blocks are set to zero first and are never read, so the
+  // factor is the one the element-wise update gives, bit for bit, with no scalar head or tail. No
+  // square root on the chain from one pivot to the next (the Cholesky factor's would be).
   const std::size_t blocks_end = (n + 3) / 4 * 4; // <= S
   for(std::size_t i = 0; i < n; ++i)
   {
@@ -696,14 +694,14 @@ CGAL_WAVEJETS_KERNEL_INLINE bool semi_normal_factor_and_solve(double* R, double*
     double* row = R + i * S;
     if(!(row[i] > semi_normal_pivot_guard * semi_normal_pivot_guard))
       return false;
-    row[i] = std::sqrt(row[i]);
-    inverse_diagonal[i] = 1. / row[i];
-    for(std::size_t j = i + 1; j < n; ++j) row[j] *= inverse_diagonal[i];
-    for(std::size_t j = i + 1; j < n; ++j) subtract_multiple_blocks(R + j * S, row, row[j], j / 4 * 4, blocks_end);
+    inverse_pivot[i] = 1. / row[i];
+    for(std::size_t j = i + 1; j < n; ++j)
+      subtract_multiple_blocks(R + j * S, row, row[j] * inverse_pivot[i], j / 4 * 4, blocks_end);
+    for(std::size_t j = i + 1; j < n; ++j) row[j] *= inverse_pivot[i];
   }
   for(std::size_t i = 0; i < n; ++i)
     for(std::size_t j = i; j < n; ++j) Rt[j * S + i] = R[i * S + j];
-  cholesky_solve(R, Rt, inverse_diagonal, n, S, rhs); // scaled solution D^-1 x
+  factored_solve(R, Rt, inverse_pivot, n, S, rhs); // scaled solution D^-1 x
   for(std::size_t j = 0; j < n; ++j) c[j] = rhs[j] * scale[j];
   return true;
 }
@@ -713,11 +711,11 @@ CGAL_WAVEJETS_KERNEL_INLINE bool semi_normal_factor_and_solve(double* R, double*
 /// Returns false if the correction exceeds semi_normal_correction_guard times the solution.
 template <class Count, class Stride>
 CGAL_WAVEJETS_KERNEL_INLINE bool semi_normal_refine(const double* R, const double* Rt, const double* scale,
-                                                   const double* inverse_diagonal, Count n, Stride S,
+                                                   const double* inverse_pivot, Count n, Stride S,
                                                    double* correction, double* c)
 {
   for(std::size_t j = 0; j < n; ++j) correction[j] *= scale[j];
-  cholesky_solve(R, Rt, inverse_diagonal, n, S, correction);
+  factored_solve(R, Rt, inverse_pivot, n, S, correction);
   double largest_x = 0., largest_dx = 0.;
   for(std::size_t j = 0; j < n; ++j)
   {
@@ -730,7 +728,8 @@ CGAL_WAVEJETS_KERNEL_INLINE bool semi_normal_refine(const double* R, const doubl
 }
 
 /// Corrected semi-normal equations (WAVEJETS_MATH.md section 2, step 3; Bjorck): the Cholesky
-/// factor of the column-scaled Gram matrix D M^T M D (D = diag(1 / |column of M|)), x from it and
+/// factor of the column-scaled Gram matrix D M^T M D (D = diag(1 / |column of M|), factored as
+/// U^T E U without square roots by semi_normal_factor_and_solve()), x from it and
 /// M^T b, then one step of iterative refinement with M itself (r = b - M x, solve for dx with the
 /// same factor, x += dx). Faster than the Householder QR for the larger Wavejet systems (1.3x at
 /// 97 x 28, see semi_normal_minimum_columns): the Gram matrix is independent dot products, where
@@ -752,8 +751,8 @@ CGAL_WAVEJETS_KERNEL_INLINE bool semi_normal_solve(double* A, std::size_t rows, 
   double* R = residual + P;        // n x n, row-major, row stride S
   double* Rt = R + n * S;          // its transpose, likewise
   double* scale = Rt + n * S;      // D
-  double* inverse_diagonal = scale + n;
-  double* rhs = inverse_diagonal + n; // n + 1: the scaled M^T b (one spare slot)
+  double* inverse_pivot = scale + n;
+  double* rhs = inverse_pivot + n; // n + 1: the scaled M^T b (one spare slot)
   double* correction = rhs + n + 1;
   const double* b = A + n * P;
   // Gram matrix, upper triangle, and M^T b (row i of R: column i's dots with columns i..n-1, then b).
@@ -761,16 +760,22 @@ CGAL_WAVEJETS_KERNEL_INLINE bool semi_normal_solve(double* A, std::size_t rows, 
     polar_moment_gram_upper(A, P, wavejet_order, scratch + polar_moment_scratch_offset(rows, n), R);
   else
     gram_upper(A, P, n, R, S);
-  if(!semi_normal_factor_and_solve(R, Rt, scale, inverse_diagonal, rhs, n, S, c))
+  if(!semi_normal_factor_and_solve(R, Rt, scale, inverse_pivot, rhs, n, S, c))
     return false;
   // Refinement: r = b - M x, D M^T r, solve, x += D dx.
   std::memcpy(residual, b, P * sizeof(double));
   for(std::size_t j = 0; j < n; ++j) householder_updates<1>(A + j * P, residual, P, 0, P, c + j);
   column_dots(residual, A, P, 0, n, correction);
-  if(!semi_normal_refine(R, Rt, scale, inverse_diagonal, n, S, correction, c))
+  if(!semi_normal_refine(R, Rt, scale, inverse_pivot, n, S, correction, c))
     return false;
-  for(std::size_t j = 0; j < n; ++j) // R of M: D^-1-scaled columns of the scaled factor
-    for(std::size_t i = 0; i <= j; ++i) A[j * P + i] = R[i * S + j] / scale[j];
+  // R of M: the Cholesky factor of D M^T M D is E^(1/2) U (E on U's diagonal in R), its columns
+  // scaled by D^-1. The square roots are off the factorization's chain.
+  for(std::size_t i = 0; i < n; ++i) rhs[i] = std::sqrt(R[i * S + i]);
+  for(std::size_t j = 0; j < n; ++j)
+  {
+    for(std::size_t i = 0; i < j; ++i) A[j * P + i] = R[i * S + j] * rhs[i] / scale[j];
+    A[j * P + j] = rhs[j] / scale[j];
+  }
   return true;
 }
 
@@ -808,11 +813,10 @@ constexpr std::size_t order2_columns = 6;
 /// The corrected semi-normal solve of a system of N unknowns given by its Gram matrix G, at sizes
 /// known at compile time (the order-2 fit: N = 6), in scalar code the compiler unrolls (the
 /// factor stays in registers; the generic kernels' vectorized row updates store and reload single
-/// entries, which costs more than the arithmetic at this size). The factorization is G = U^T E U
-/// (U unit upper triangular, E diagonal: Cholesky without square roots), whose pivots are those of
-/// the Cholesky factor squared: the same guards as semi_normal_factor_and_solve() (a pivot of the
-/// column-scaled matrix D G D, D = diag(1 / sqrt(G(i, i))), below semi_normal_pivot_guard^2 refuses
-/// the system, i.e. E(i) below that times G(i, i), with no scaling done) and semi_normal_refine().
+/// entries, which costs more than the arithmetic at this size). The factorization is G = U^T E U,
+/// as in semi_normal_factor_and_solve() but without the column scaling D = diag(1 / sqrt(G(i, i))):
+/// the same guards (a pivot E(i) of D G D below semi_normal_pivot_guard^2 refuses the system, i.e.
+/// E(i) of G below that times G(i, i)) and the refinement of semi_normal_refine().
 template <std::size_t N>
 struct Small_semi_normal
 {
