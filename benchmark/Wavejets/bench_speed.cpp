@@ -696,7 +696,7 @@ static std::string qr_comparison_row(const Points& points, std::size_t order, un
     for(std::size_t q = 0; q < m; ++q)
     {
       std::copy(S.A.begin() + q * size, S.A.begin() + (q + 1) * size, work.begin());
-      fallbacks += !(polar ? WI::wavejet_semi_normal_kernel : WI::semi_normal_kernel)(work.data(), S.rows, S.cols,
+      fallbacks += !(polar ? WI::wavejet_semi_normal_kernel<> : WI::semi_normal_kernel<>)(work.data(), S.rows, S.cols,
                                                                                       v.data(), c.data());
     }
   }

@@ -394,15 +394,26 @@ static void test_wavejet_semi_normal_on_wavejet_systems()
   double worst = 0., worst_gram = 0., worst_baseline = 0.;
   std::size_t polar = 0, own[3] = {0, 0, 0}, own_by_dots[3] = {0, 0, 0}, per_shape[3] = {0, 0, 0};
   bool all_solved = true, same_elsewhere = true, avx_bitwise = true, dispatch_ok = true;
-  std::vector<double> qr, mine, other, base, avx, fma;
+  bool solution_only_same = true, solution_only_keeps_A = true;
+  std::size_t kept_checked = 0;
+  std::vector<double> qr, mine, other, base, avx, fma, solution_only;
+  // The solves without R (what the fits run unless the condition number is asked for).
+  const Kernel wavejet_solution = [](double* A, std::size_t rows, std::size_t cols, double* v, double* c) {
+    return WI::least_squares_solution(A, rows, cols, v, c, true);
+  };
+  const Kernel plain_solution = [](double* A, std::size_t rows, std::size_t cols, double* v, double* c) {
+    return WI::least_squares_solution(A, rows, cols, v, c, false);
+  };
   for(std::size_t q = 0; q < systems.size(); ++q)
   {
     const System& s = systems[q];
     const bool solved = solve(&WI::householder_least_squares, s, qr) && solve(&WI::wavejet_least_squares, s, mine);
     all_solved = all_solved && solved;
+    solution_only_same = solution_only_same && solve(wavejet_solution, s, solution_only) && solution_only == mine;
+    solve(&WI::least_squares, s, other);
+    solution_only_same = solution_only_same && solve(plain_solution, s, solution_only) && solution_only == other;
     if(!WI::uses_polar_moments(s.rows, s.cols))
     {
-      solve(&WI::least_squares, s, other);
       same_elsewhere = same_elsewhere && other == mine;
       continue;
     }
@@ -431,6 +442,12 @@ static void test_wavejet_semi_normal_on_wavejet_systems()
     const Aligned system = A;
     own[shape] += WI::wavejet_semi_normal_kernel(A.data(), s.rows, B, v.data(), c.data());
     A = system;
+    if(WI::wavejet_semi_normal_kernel<false>(A.data(), s.rows, B, v.data(), c.data())) // no R: A untouched
+    {
+      ++kept_checked;
+      solution_only_keeps_A = solution_only_keeps_A && A == system;
+    }
+    A = system;
     own_by_dots[shape] += WI::semi_normal_kernel(A.data(), s.rows, B, v.data(), c.data());
     // The compilations: the baseline against the baseline QR (the FMA clone is `mine` when the
     // processor has it: checked against the dispatched QR above), AVX bitwise the baseline.
@@ -452,6 +469,12 @@ static void test_wavejet_semi_normal_on_wavejet_systems()
   check_printed(same_elsewhere, "wavejet_least_squares() == least_squares(), bitwise, on the others (fewer than " +
                                   std::to_string(WI::semi_normal_minimum_columns) + " unknowns or " +
                                   std::to_string(WI::polar_moment_minimum_rows_per_column) + " rows per unknown)");
+  check_printed(solution_only_same, "least_squares_solution() (no R) == wavejet_least_squares() and least_squares(), "
+                                    "bitwise, on the " + n);
+  check_printed(kept_checked == own[0] + own[1] + own[2] && kept_checked > 500,
+                "the semi-normal equations without R solve the same " + std::to_string(kept_checked) +
+                  " systems as with R (their guards refuse the others)");
+  check_printed(solution_only_keeps_A, "... and leave those systems unchanged");
   check_printed(worst_gram <= 1e-13, "Gram matrix from polar moments vs dot products: " + sci(worst_gram) +
                                        " relative to the diagonal (<= 1e-13) on the uniform samples");
   check_printed(worst <= 1e-10, "wavejet_least_squares() vs QR (dispatched: " +

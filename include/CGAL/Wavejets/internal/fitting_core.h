@@ -628,7 +628,8 @@ private:
     return solve_work(L, B, c, false);
   }
 
-  // Least squares on the system [A | h] in work_ (destroyed: R on return, see least_squares.h).
+  // Least squares on the system [A | h] in work_ (destroyed; R on return if want_condition_, see
+  // least_squares.h).
   // `wavejet_basis`: A is the basis of evaluate_basis_columns() at the order of B unknowns (no
   // weights, no slope rows), solved by wavejet_least_squares(); else by least_squares().
   bool solve_work(std::size_t L, std::size_t B, std::vector<double>& c, bool wavejet_basis)
@@ -636,7 +637,11 @@ private:
     const std::size_t P = padded_rows(L);
     solver_scratch_.resize(wavejet_basis ? wavejet_least_squares_scratch_size(L, B) : least_squares_scratch_size(L, B));
     c.resize(B);
-    if(!(wavejet_basis ? wavejet_least_squares : least_squares)(work_.data(), L, B, solver_scratch_.data(), c.data()))
+    const bool solved = want_condition_ // R: the condition number's
+                          ? (wavejet_basis ? wavejet_least_squares : least_squares)(work_.data(), L, B,
+                                                                                     solver_scratch_.data(), c.data())
+                          : least_squares_solution(work_.data(), L, B, solver_scratch_.data(), c.data(), wavejet_basis);
+    if(!solved)
       return false;
     for(std::size_t b = 0; b < B; ++b)
       if(!std::isfinite(c[b])) return false;

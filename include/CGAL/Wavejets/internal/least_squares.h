@@ -335,6 +335,40 @@ CGAL_WAVEJETS_KERNEL_INLINE void column_dots(const double* v, const double* X, s
   for(; m < last; ++m) householder_dots<1>(v, X + m * P, P, 0, P, w + m);
 }
 
+/// y[l] -= a[t] x[t * stride + l] for t = 0, 1, 2, 3 in that order (four multiply-adds per load and
+/// store of y), l = begin, begin + 4, ... < end (whole blocks of four).
+CGAL_WAVEJETS_KERNEL_INLINE void subtract_four_multiples(double* y, const double* x, std::size_t stride, const double* a,
+                                                        std::size_t begin, std::size_t end)
+{
+  const Double4 zero = {0., 0., 0., 0.};
+  const Double4 a0 = zero + a[0], a1 = zero + a[1], a2 = zero + a[2], a3 = zero + a[3];
+  for(std::size_t l = begin; l < end; l += 4)
+  {
+    Double4 yv, x0, x1, x2, x3;
+    load4(yv, y + l);
+    load4(x0, x + l);
+    load4(x1, x + stride + l);
+    load4(x2, x + 2 * stride + l);
+    load4(x3, x + 3 * stride + l);
+    yv -= a0 * x0;
+    yv -= a1 * x1;
+    yv -= a2 * x2;
+    yv -= a3 * x3;
+    store4(y + l, yv);
+  }
+}
+
+/// r = b - M c for the n columns of M (stride P, rows 0..P-1) and b = column n, four columns per
+/// pass over r. Each row subtracts c[j] M(l, j) for j = 0, 1, ... in order: the values of
+/// householder_updates<1>() column by column.
+CGAL_WAVEJETS_KERNEL_INLINE void residual_of(const double* M, std::size_t P, std::size_t n, const double* c, double* r)
+{
+  std::memcpy(r, M + n * P, P * sizeof(double));
+  std::size_t j = 0;
+  for(; j + 4 <= n; j += 4) subtract_four_multiples(r, M + j * P, P, c + j, 0, P);
+  for(; j < n; ++j) householder_updates<1>(M + j * P, r, P, 0, P, c + j);
+}
+
 /// Sum of the four lanes of x, in a fixed order.
 CGAL_WAVEJETS_KERNEL_INLINE double reduce4(const Double4& x)
 {
@@ -641,7 +675,7 @@ constexpr double semi_normal_correction_guard = 1e-6;
 /// Scratch doubles needed by semi_normal_kernel() for a system of `cols` unknowns and `rows` rows.
 inline std::size_t semi_normal_scratch_size(std::size_t rows, std::size_t cols)
 {
-  return padded_rows(rows) + 2 * cols * semi_normal_row_stride(cols) + 4 * cols + 1;
+  return padded_rows(rows) + (2 * cols + 1) * semi_normal_row_stride(cols) + 3 * cols + 1;
 }
 
 /// Where semi_normal_kernel() with a Wavejet order puts polar_moment_gram_upper()'s scratch: after its
@@ -659,48 +693,89 @@ inline std::size_t wavejet_semi_normal_scratch_size(std::size_t rows, std::size_
 
 /// The solve shared by the semi-normal solvers, from the Gram matrix G = M^T M (upper triangle,
 /// row-major with row stride S in `R`, S >= n + 1) and M^T b (in R's column n): the column scales
-/// `scale` (D = diag(1 / sqrt(G(i, i)))), the factor U^T E U of D G D (the Cholesky factor without
-/// its square roots: U unit upper triangular, E diagonal, E(i) the squared Cholesky pivot), U
-/// overwriting G in `R` with E on its diagonal, its transpose in `Rt`, 1 / E in `inverse_pivot`,
-/// and the first solution x into `c`. `rhs`: n scratch doubles. Returns false if G has a
-/// non-positive or non-finite diagonal entry or a scaled Cholesky pivot is below
-/// semi_normal_pivot_guard (E(i) below its square).
+/// `scale` (D = diag(1 / sqrt(G(i, i))); room for S doubles, zero from n on), the factor U^T E U of
+/// D G D (the Cholesky factor without its square roots: U unit upper triangular, E diagonal, E(i)
+/// the squared Cholesky pivot), U overwriting G in `R` with E on its diagonal, its transpose in
+/// `Rt`, 1 / E in `inverse_pivot`, and the first solution x into `c`. `rhs`: n scratch doubles.
+/// Returns false if G has a non-positive or non-finite diagonal entry or a scaled Cholesky pivot is
+/// below semi_normal_pivot_guard (E(i) below its square).
 template <class Count, class Stride>
 CGAL_WAVEJETS_KERNEL_INLINE bool semi_normal_factor_and_solve(double* R, double* Rt, double* scale, double* inverse_pivot,
                                                              double* rhs, Count n, Stride S, double* c)
 {
   for(std::size_t i = 0; i < n; ++i)
-  {
     if(!(R[i * S + i] > 0.) || !std::isfinite(R[i * S + i]))
       return false;
-    scale[i] = 1. / std::sqrt(R[i * S + i]);
-    rhs[i] = R[i * S + n] * scale[i];
-  }
-  // U^T E U of D M^T M D (row-major, overwriting the Gram matrix), right-looking: each pivot row
-  // updates the trailing rows with independent multiply-adds, over whole blocks of four columns
-  // (from the block of the diagonal to the one of column n - 1): the entries left of the diagonal
-  // and right of column n - 1 in those blocks are set to zero first and are never read, so the
-  // factor is the one the element-wise update gives, bit for bit, with no scalar head or tail. No
-  // square root on the chain from one pivot to the next (the Cholesky factor's would be).
   const std::size_t blocks_end = (n + 3) / 4 * 4; // <= S
   for(std::size_t i = 0; i < n; ++i)
   {
-    for(std::size_t j = i / 4 * 4; j < i; ++j) R[i * S + j] = 0.;
-    for(std::size_t j = i; j < n; ++j) R[i * S + j] *= scale[i] * scale[j];
-    for(std::size_t j = n; j < blocks_end; ++j) R[i * S + j] = 0.; // M^T b, read above
+    scale[i] = 1. / std::sqrt(R[i * S + i]);
+    rhs[i] = R[i * S + n] * scale[i];
   }
+  for(std::size_t i = n; i < blocks_end; ++i) scale[i] = 0.;
+  // D G D, by whole blocks of four columns from the block of the diagonal to the one of column
+  // n - 1: the entries left of the diagonal and right of column n - 1 in those blocks are then set
+  // to zero and never read, so the factor below is the one the element-wise updates give, bit for
+  // bit, with no scalar head or tail.
+  const Double4 zero = {0., 0., 0., 0.};
   for(std::size_t i = 0; i < n; ++i)
   {
     double* row = R + i * S;
-    if(!(row[i] > semi_normal_pivot_guard * semi_normal_pivot_guard))
-      return false;
-    inverse_pivot[i] = 1. / row[i];
-    for(std::size_t j = i + 1; j < n; ++j)
-      subtract_multiple_blocks(R + j * S, row, row[j] * inverse_pivot[i], j / 4 * 4, blocks_end);
-    for(std::size_t j = i + 1; j < n; ++j) row[j] *= inverse_pivot[i];
+    const Double4 row_scale = zero + scale[i];
+    for(std::size_t j = i / 4 * 4; j < blocks_end; j += 4)
+    {
+      Double4 entries, column_scales;
+      load4(entries, row + j);
+      load4(column_scales, scale + j);
+      entries = entries * (row_scale * column_scales);
+      store4(row + j, entries);
+    }
+    for(std::size_t j = i / 4 * 4; j < i; ++j) row[j] = 0.;
+    for(std::size_t j = n; j < blocks_end; ++j) row[j] = 0.; // M^T b, read above
   }
-  for(std::size_t i = 0; i < n; ++i)
-    for(std::size_t j = i; j < n; ++j) Rt[j * S + i] = R[i * S + j];
+  // U^T E U, right-looking by panels of four pivot rows, no square root on the chain from one
+  // pivot to the next (the Cholesky factor's would be). Every entry (j, k) receives the updates
+  // -U(i, j) W(i, k) of the pivots i < j in increasing order (W: a pivot row before its division by
+  // E(i)), as in the one-pivot-at-a-time elimination, bit for bit; a panel's four rows update each
+  // row below them in one pass (four multiply-adds per load and store of a block).
+  for(std::size_t i0 = 0; i0 < n; i0 += 4)
+  {
+    const std::size_t i1 = (std::min)(i0 + 4, std::size_t(n)); // the panel's rows i0..i1-1
+    for(std::size_t i = i0; i < i1; ++i) // the panel's own rows
+    {
+      double* row = R + i * S;
+      if(!(row[i] > semi_normal_pivot_guard * semi_normal_pivot_guard))
+        return false;
+      inverse_pivot[i] = 1. / row[i];
+      for(std::size_t j = i + 1; j < i1; ++j)
+        subtract_multiple_blocks(R + j * S, row, row[j] * inverse_pivot[i], i0, blocks_end);
+    }
+    const double* panel = R + i0 * S;
+    for(std::size_t j = i1; j < n; ++j) // the rows below (none after a partial panel: the last)
+    {
+      double* multipliers = Rt + j * S + i0; // U(i0..i0+3, j), in U's transpose
+      for(std::size_t t = 0; t < 4; ++t) multipliers[t] = panel[t * S + j] * inverse_pivot[i0 + t];
+      subtract_four_multiples(R + j * S, panel, S, multipliers, j / 4 * 4, blocks_end);
+    }
+    for(std::size_t i = i0; i < i1; ++i) // divide the panel's rows by their pivots
+    {
+      double* row = R + i * S;
+      Rt[i * S + i] = row[i];
+      for(std::size_t j = i + 1; j < i1; ++j)
+      {
+        row[j] *= inverse_pivot[i];
+        Rt[j * S + i] = row[j];
+      }
+      const Double4 inverse = zero + inverse_pivot[i];
+      for(std::size_t k = (i1 + 3) / 4 * 4; k < blocks_end; k += 4)
+      {
+        Double4 entries;
+        load4(entries, row + k);
+        entries = entries * inverse;
+        store4(row + k, entries);
+      }
+    }
+  }
   factored_solve(R, Rt, inverse_pivot, n, S, rhs); // scaled solution D^-1 x
   for(std::size_t j = 0; j < n; ++j) c[j] = rhs[j] * scale[j];
   return true;
@@ -738,11 +813,12 @@ CGAL_WAVEJETS_KERNEL_INLINE bool semi_normal_refine(const double* R, const doubl
 /// wavejet_semi_normal_kernel() (`wavejet_order` K > 0: from the polar moments of the order-K basis).
 /// Guarded: returns false, leaving A unchanged, when a scaled pivot is below
 /// semi_normal_pivot_guard or the correction exceeds semi_normal_correction_guard times the
-/// solution (then the caller solves with the QR). On success, as the QR: the upper triangle of
-/// A's first `cols` columns holds R (of M, unscaled; the QR's up to the signs of its rows) and
-/// c[0..cols-1] the solution.
+/// solution (then the caller solves with the QR). On success, c[0..cols-1] holds the solution and,
+/// if `with_R`, the upper triangle of A's first `cols` columns R (of M, unscaled; the QR's up to
+/// the signs of its rows), as the QR; without it A is left unchanged (building R costs n(n+1)/2
+/// divisions, 9% of a 97 x 28 solve, and only the condition number reads it).
 CGAL_WAVEJETS_KERNEL_INLINE bool semi_normal_solve(double* A, std::size_t rows, std::size_t cols, double* scratch,
-                                                  double* c, std::size_t wavejet_order)
+                                                  double* c, std::size_t wavejet_order, bool with_R)
 {
   if(rows < cols || cols == 0)
     return false;
@@ -750,11 +826,10 @@ CGAL_WAVEJETS_KERNEL_INLINE bool semi_normal_solve(double* A, std::size_t rows, 
   double* residual = scratch;      // P
   double* R = residual + P;        // n x n, row-major, row stride S
   double* Rt = R + n * S;          // its transpose, likewise
-  double* scale = Rt + n * S;      // D
-  double* inverse_pivot = scale + n;
+  double* scale = Rt + n * S;      // D, S doubles (zero padding)
+  double* inverse_pivot = scale + S;
   double* rhs = inverse_pivot + n; // n + 1: the scaled M^T b (one spare slot)
   double* correction = rhs + n + 1;
-  const double* b = A + n * P;
   // Gram matrix, upper triangle, and M^T b (row i of R: column i's dots with columns i..n-1, then b).
   if(wavejet_order > 0)
     polar_moment_gram_upper(A, P, wavejet_order, scratch + polar_moment_scratch_offset(rows, n), R);
@@ -763,11 +838,12 @@ CGAL_WAVEJETS_KERNEL_INLINE bool semi_normal_solve(double* A, std::size_t rows, 
   if(!semi_normal_factor_and_solve(R, Rt, scale, inverse_pivot, rhs, n, S, c))
     return false;
   // Refinement: r = b - M x, D M^T r, solve, x += D dx.
-  std::memcpy(residual, b, P * sizeof(double));
-  for(std::size_t j = 0; j < n; ++j) householder_updates<1>(A + j * P, residual, P, 0, P, c + j);
+  residual_of(A, P, n, c, residual);
   column_dots(residual, A, P, 0, n, correction);
   if(!semi_normal_refine(R, Rt, scale, inverse_pivot, n, S, correction, c))
     return false;
+  if(!with_R)
+    return true;
   // R of M: the Cholesky factor of D M^T M D is E^(1/2) U (E on U's diagonal in R), its columns
   // scaled by D^-1. The square roots are off the factorization's chain.
   for(std::size_t i = 0; i < n; ++i) rhs[i] = std::sqrt(R[i * S + i]);
@@ -781,10 +857,11 @@ CGAL_WAVEJETS_KERNEL_INLINE bool semi_normal_solve(double* A, std::size_t rows, 
 
 /// Corrected semi-normal equations, the Gram matrix M^T M dot by dot (gram_upper()): see
 /// semi_normal_solve() above. `scratch`: semi_normal_scratch_size().
+template <bool with_R = true>
 CGAL_WAVEJETS_KERNEL_INLINE bool semi_normal_kernel(double* A, std::size_t rows, std::size_t cols, double* scratch,
                                                    double* c)
 {
-  return semi_normal_solve(A, rows, cols, scratch, c, 0);
+  return semi_normal_solve(A, rows, cols, scratch, c, 0, with_R);
 }
 
 /// Order K of a Wavejet system of `cols` = (K+1)(K+2)/2 unknowns whose Gram matrix
@@ -801,10 +878,11 @@ inline std::size_t polar_moment_order(std::size_t cols)
 /// K of `cols` = (K+1)(K+2)/2 unknowns (polar_moment_order(cols) > 0), and the Gram matrix is built
 /// from their polar moments (polar_moment_gram_upper()). The same guards, refusals and results up to
 /// the rounding of the Gram matrix. `scratch`: wavejet_semi_normal_scratch_size().
+template <bool with_R = true>
 CGAL_WAVEJETS_KERNEL_INLINE bool wavejet_semi_normal_kernel(double* A, std::size_t rows, std::size_t cols, double* scratch,
                                                            double* c)
 {
-  return semi_normal_solve(A, rows, cols, scratch, c, polar_moment_order(cols));
+  return semi_normal_solve(A, rows, cols, scratch, c, polar_moment_order(cols), with_R);
 }
 
 /// Unknowns of an order-2 Wavejet: 1, x, y, x^2 + y^2, x^2 - y^2, 2 x y (basis.h's columns).
@@ -1038,10 +1116,11 @@ constexpr std::size_t semi_normal_minimum_columns = 21;
 /// The solver used for every Wavejet system: from semi_normal_minimum_columns unknowns the guarded
 /// semi-normal equations, and the Householder QR for smaller systems and for those the semi-normal
 /// equations refuse (ill conditioned, see semi_normal_kernel()). `scratch`: least_squares_scratch_size().
+template <bool with_R = true>
 CGAL_WAVEJETS_KERNEL_INLINE bool least_squares_kernel(double* A, std::size_t rows, std::size_t cols, double* scratch,
                                                      double* c)
 {
-  return (cols >= semi_normal_minimum_columns && semi_normal_kernel(A, rows, cols, scratch, c)) ||
+  return (cols >= semi_normal_minimum_columns && semi_normal_kernel<with_R>(A, rows, cols, scratch, c)) ||
          householder_kernel(A, rows, cols, scratch, c);
 }
 
@@ -1065,12 +1144,13 @@ inline bool uses_polar_moments(std::size_t rows, std::size_t cols)
 /// least_squares_kernel() for the Wavejet systems of evaluate_basis_columns() (cols = (K+1)(K+2)/2
 /// unknowns): the semi-normal equations' Gram matrix from polar moments where uses_polar_moments(),
 /// dot by dot otherwise. `scratch`: wavejet_least_squares_scratch_size().
+template <bool with_R = true>
 CGAL_WAVEJETS_KERNEL_INLINE bool wavejet_least_squares_kernel(double* A, std::size_t rows, std::size_t cols,
                                                              double* scratch, double* c)
 {
   if(!uses_polar_moments(rows, cols))
-    return least_squares_kernel(A, rows, cols, scratch, c);
-  return wavejet_semi_normal_kernel(A, rows, cols, scratch, c) || householder_kernel(A, rows, cols, scratch, c);
+    return least_squares_kernel<with_R>(A, rows, cols, scratch, c);
+  return wavejet_semi_normal_kernel<with_R>(A, rows, cols, scratch, c) || householder_kernel(A, rows, cols, scratch, c);
 }
 
 /// The solvers the dispatch below serves.
@@ -1082,34 +1162,35 @@ enum class Solver
   ORDER2_MOMENTS          ///< order2_moments_kernel(): A holds the columns x, y, h; cols and scratch unused
 };
 
-template <Solver S>
+/// Solver S on A; `with_R` false: R need not be returned (the semi-normal solvers then skip it).
+template <Solver S, bool with_R = true>
 CGAL_WAVEJETS_KERNEL_INLINE bool solver_kernel(double* A, std::size_t rows, std::size_t cols, double* scratch, double* c)
 {
   switch(S)
   {
   case Solver::HOUSEHOLDER_QR: return householder_kernel(A, rows, cols, scratch, c);
-  case Solver::SEMI_NORMAL_ELSE_QR: return least_squares_kernel(A, rows, cols, scratch, c);
-  case Solver::WAVEJET_SEMI_NORMAL_ELSE_QR: return wavejet_least_squares_kernel(A, rows, cols, scratch, c);
+  case Solver::SEMI_NORMAL_ELSE_QR: return least_squares_kernel<with_R>(A, rows, cols, scratch, c);
+  case Solver::WAVEJET_SEMI_NORMAL_ELSE_QR: return wavejet_least_squares_kernel<with_R>(A, rows, cols, scratch, c);
   case Solver::ORDER2_MOMENTS: return order2_moments_kernel(A, rows, c);
   }
   return false;
 }
 
 /// The kernel compiled for AVX2 + FMA (run it only where the processor has both).
-template <Solver S>
+template <Solver S, bool with_R = true>
 CGAL_WAVEJETS_TARGET("avx2,fma") inline bool solver_fma(double* A, std::size_t rows, std::size_t cols, double* v, double* c)
 {
-  return solver_kernel<S>(A, rows, cols, v, c);
+  return solver_kernel<S, with_R>(A, rows, cols, v, c);
 }
 /// The kernel compiled for AVX (run it only where the processor has it).
-template <Solver S>
+template <Solver S, bool with_R = true>
 CGAL_WAVEJETS_TARGET("avx") inline bool solver_avx(double* A, std::size_t rows, std::size_t cols, double* v, double* c)
 {
-  return solver_kernel<S>(A, rows, cols, v, c);
+  return solver_kernel<S, with_R>(A, rows, cols, v, c);
 }
 
 /// Runs solver S compiled for the best instruction set the processor has (the same for every call).
-template <Solver S>
+template <Solver S, bool with_R = true>
 inline bool dispatch_solver(double* A, std::size_t rows, std::size_t cols, double* v, double* c)
 {
 #ifdef CGAL_WAVEJETS_AVX_DISPATCH
@@ -1119,11 +1200,11 @@ inline bool dispatch_solver(double* A, std::size_t rows, std::size_t cols, doubl
   const bool fma = false;
 #endif
   if(fma)
-    return solver_fma<S>(A, rows, cols, v, c);
+    return solver_fma<S, with_R>(A, rows, cols, v, c);
   if(processor_runs_avx())
-    return solver_avx<S>(A, rows, cols, v, c);
+    return solver_avx<S, with_R>(A, rows, cols, v, c);
 #endif
-  return solver_kernel<S>(A, rows, cols, v, c);
+  return solver_kernel<S, with_R>(A, rows, cols, v, c);
 }
 
 /// Solves min ||A c - b|| for a rows x cols matrix `A` by Householder QR. `A` is column-major with
@@ -1177,6 +1258,16 @@ inline std::size_t wavejet_least_squares_scratch_size(std::size_t rows, std::siz
 inline bool wavejet_least_squares(double* A, std::size_t rows, std::size_t cols, double* scratch, double* c)
 {
   return dispatch_solver<semi_normal_unless_disabled(Solver::WAVEJET_SEMI_NORMAL_ELSE_QR)>(A, rows, cols, scratch, c);
+}
+
+/// The same solution c as least_squares() (`wavejet_basis` false) or wavejet_least_squares()
+/// (true), bit for bit, without R: A is left unchanged or destroyed (the QR's work).
+inline bool least_squares_solution(double* A, std::size_t rows, std::size_t cols, double* scratch, double* c,
+                                   bool wavejet_basis)
+{
+  return wavejet_basis
+           ? dispatch_solver<semi_normal_unless_disabled(Solver::WAVEJET_SEMI_NORMAL_ELSE_QR), false>(A, rows, cols, scratch, c)
+           : dispatch_solver<semi_normal_unless_disabled(Solver::SEMI_NORMAL_ELSE_QR), false>(A, rows, cols, scratch, c);
 }
 
 /// The order-2 Wavejet fit of the points (x_l, y_l, h_l), l < L, by order2_moments_kernel():
