@@ -562,7 +562,6 @@ CGAL_WAVEJETS_KERNEL_INLINE void polar_moment_gram_upper(const double* A, std::s
     power[2 * m - 1] = re;
     power[2 * m] = im;
   }
-  for(std::size_t c = 4 * K + 1; c < Z; ++c) power[c] = power[0]; // tile padding: computed, never read
   for(std::size_t a = 0; a <= K; ++a)
   {
     if(2 * a <= K)
@@ -575,17 +574,21 @@ CGAL_WAVEJETS_KERNEL_INLINE void polar_moment_gram_upper(const double* A, std::s
     radial[a] = built;
     built += P;
   }
-  radial[K + 1] = radial[K]; // the partner of the last row when K is even: computed, never read
-  // Moments mu[a * Z + c] = r^{2a} . (column c of the powers), for the c of z^m with 2a + m <= 2K,
-  // rows a, a + 1 together (the columns row a needs cover those of row a + 1).
+  radial[K + 1] = radial[K]; // the partner of row K when K is even: never read (row K has one column)
+  // Moments mu[a * Z + c] = r^{2a} . (column c of the powers), for the c of z^m with 2a + m <= 2K:
+  // row a needs the columns c < 4(K - a) + 1. Rows a, a + 1 together by tiles of four columns (row
+  // a + 1 needs four columns fewer: its part of the last tile that starts below row a's last
+  // column is computed and not read), then row a's last column, Im z^{2(K - a)}, alone.
   double* mu = built;
   const Double4 zero = {0., 0., 0., 0.};
   for(std::size_t a = 0; a <= K; a += 2)
-    for(std::size_t c = 0; c < 1 + 2 * (2 * K - 2 * a); c += 4)
+  {
+    const std::size_t last = 4 * (K - a); // row a's last column
+    const double* u0 = radial[a];
+    const double* u1 = radial[a + 1];
+    for(std::size_t c = 0; c < last; c += 4)
     {
       Double4 acc[2][4] = {{zero, zero, zero, zero}, {zero, zero, zero, zero}};
-      const double* u0 = radial[a];
-      const double* u1 = radial[a + 1];
       const double* z[4] = {power[c], power[c + 1], power[c + 2], power[c + 3]};
       for(std::size_t r = 0; r < P; r += 4)
       {
@@ -602,9 +605,18 @@ CGAL_WAVEJETS_KERNEL_INLINE void polar_moment_gram_upper(const double* A, std::s
       for(int m = 0; m < 4; ++m)
       {
         mu[a * Z + c + m] = reduce4(acc[0][m]);
-        if(a + 1 <= K) mu[(a + 1) * Z + c + m] = reduce4(acc[1][m]);
+        mu[(a + 1) * Z + c + m] = reduce4(acc[1][m]);
       }
     }
+    Double4 acc = zero, a0, b;
+    for(std::size_t r = 0; r < P; r += 4)
+    {
+      load4(a0, u0 + r);
+      load4(b, power[last] + r);
+      acc += a0 * b;
+    }
+    mu[a * Z + last] = reduce4(acc);
+  }
   // The entries (halving is exact: the same values whether or not the compiler fuses).
   const Polar_moment_terms& terms = polar_moment_terms(K);
   for(std::size_t t = 0; t < terms.single.size(); t += 2) G[terms.single[t]] = mu[terms.single[t + 1]];
