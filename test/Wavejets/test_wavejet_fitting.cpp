@@ -1683,6 +1683,111 @@ void test_order2_moments(const Kitten& kitten)
   end_section();
 }
 
+// The PCA's eigen-decomposition (fitting_core.h, symmetric_eigen_3()): Eigen's closed form where it
+// is as accurate as the iterative QR, else the iterative QR. On matrices Q diag(lambda) Q^T of known
+// spectrum, from well separated eigenvalues to equal ones (planes, isotropic disks, lines, a point):
+// every result within the bounds of a backward-stable solver (eigenvalues within 32 eps |A|_F,
+// each eigenvector within 32 eps |A|_F over its gap, orthonormal columns); well separated
+// spectra keep the closed form (bit for bit computeDirect's), and close ones that the closed
+// form gets wrong beyond those bounds take the iterative solver (bit for bit compute()'s).
+void test_pca_eigen_decomposition()
+{
+  begin_section("11. the PCA's eigen-decomposition: closed form, guarded");
+  namespace WI = CGAL::Wavejets::internal;
+  const double eps = std::numeric_limits<double>::epsilon();
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> G(0., 1.);
+  std::size_t closed_form = 0, iterative = 0, separated = 0, separated_closed_form = 0, direct_beyond_bounds = 0;
+  double worst_value = 0., worst_orthogonality = 0.;
+  bool all_solved = true, one_or_the_other = true;
+  // Spectra (ascending), times a scale: the relative gaps of the two largest (disks), of the two
+  // smallest (lines) and exact repetitions.
+  std::vector<Vector3d> spectra;
+  for(double gap : {0.5, 1e-2, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12, 0.})
+  {
+    spectra.push_back(Vector3d(1e-3, 0.5, 0.5 * (1. + gap))); // a disk
+    spectra.push_back(Vector3d(0., 0.3, 0.3 * (1. + gap)));   // a flat disk
+    spectra.push_back(Vector3d(1e-4, 1e-4 * (1. + gap), 1.)); // a line
+  }
+  spectra.push_back(Vector3d(0., 0., 1.));
+  spectra.push_back(Vector3d(1., 1., 1.));
+  spectra.push_back(Vector3d(0., 0., 0.));
+  spectra.push_back(Vector3d(1e-3, 0.2, 0.7));
+  for(const Vector3d& spectrum : spectra)
+    for(double scale : {1., 1e-20, 1e20})
+      for(int t = 0; t < 50; ++t)
+      {
+        const Eigen::Quaterniond q(G(rng), G(rng), G(rng), G(rng));
+        const Matrix3d Q = q.normalized().toRotationMatrix();
+        const Vector3d lambda = scale * spectrum;
+        const Matrix3d A = Q * lambda.asDiagonal() * Q.transpose();
+        Vector3d values;
+        Matrix3d vectors;
+        if(!WI::symmetric_eigen_3(A, values, vectors)) { all_solved = false; continue; }
+        Eigen::SelfAdjointEigenSolver<Matrix3d> direct, qr;
+        direct.computeDirect(A);
+        qr.compute(A);
+        auto same = [&](const Eigen::SelfAdjointEigenSolver<Matrix3d>& e) {
+          for(int i = 0; i < 3; ++i)
+            for(int j = 0; j < 3; ++j)
+              if(!wavejets_test::same_bits(vectors(i, j), e.eigenvectors()(i, j)) ||
+                 !wavejets_test::same_bits(values(i), e.eigenvalues()(i)))
+                return false;
+          return true;
+        };
+        const bool took_direct = same(direct), took_qr = same(qr);
+        closed_form += took_direct;
+        iterative += took_qr && !took_direct;
+        one_or_the_other = one_or_the_other && (took_direct || took_qr);
+        // Within a backward-stable solver's bounds: |lambda_i - true| <= 32 eps |A|_F, eigenvector i
+        // within 32 eps |A|_F / gap_i of the true one (Davis-Kahan; no bound for repeated eigenvalues).
+        const double bound = 32. * eps * A.norm();
+        auto beyond_bounds = [&](const Vector3d& vals, const Matrix3d& vecs) {
+          double worst = 0.;
+          for(int i = 0; i < 3; ++i)
+          {
+            worst = (std::max)(worst, std::abs(vals(i) - lambda(i)) / bound);
+            const double gap = (std::min)(i > 0 ? lambda(i) - lambda(i - 1) : 1e300, i < 2 ? lambda(i + 1) - lambda(i) : 1e300);
+            if(gap > 0.)
+              worst = (std::max)(worst, line_angle(vecs.col(i), Q.col(i)) * gap / bound);
+          }
+          return worst;
+        };
+        const double worst = beyond_bounds(values, vectors);
+        worst_value = (std::max)(worst_value, worst);
+        worst_orthogonality =
+          (std::max)(worst_orthogonality, (vectors.transpose() * vectors - Matrix3d::Identity()).cwiseAbs().maxCoeff());
+        direct_beyond_bounds += beyond_bounds(direct.eigenvalues(), direct.eigenvectors()) > 1.;
+        const double smallest_gap = (std::min)(lambda(1) - lambda(0), lambda(2) - lambda(1));
+        if(smallest_gap > 1e-2 * lambda(2))
+        {
+          ++separated;
+          separated_closed_form += took_direct;
+        }
+      }
+  std::cout << "  " << closed_form + iterative << " matrices: closed form kept for " << closed_form << ", iterative for "
+            << iterative << "; the closed form alone beyond the bounds on " << direct_beyond_bounds
+            << "; worst error / bound " << worst_value << ", orthogonality " << worst_orthogonality << std::endl;
+  check(all_solved, "every matrix decomposed");
+  check(one_or_the_other, "the result is the closed form's or the iterative solver's, bit for bit");
+  check(worst_value <= 1., str("eigenvalues and eigenvectors within the backward-stable bounds: worst ", worst_value,
+                               " of the bound"));
+  check(worst_orthogonality <= 8. * eps, str("orthonormal eigenvectors: ", worst_orthogonality));
+  check(separated > 0 && separated_closed_form == separated,
+        str("well separated spectra keep the closed form: ", separated_closed_form, " of ", separated));
+  check(direct_beyond_bounds > 0 && iterative > 0,
+        str("the guard matters: the closed form alone misses the bounds on ", direct_beyond_bounds,
+            " matrices (close eigenvalues); ", iterative, " go to the iterative solver"));
+
+  // Not finite: refused.
+  Matrix3d A = Matrix3d::Identity();
+  A(0, 1) = A(1, 0) = std::numeric_limits<double>::quiet_NaN();
+  Vector3d values;
+  Matrix3d vectors;
+  check(!WI::symmetric_eigen_3(A, values, vectors), "a NaN entry: refused");
+  end_section();
+}
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -1700,5 +1805,6 @@ int main(int argc, char** argv)
     Case{"accessors", [] { test_accessors(kitten()); }},
     Case{"tangent_plane_order", [] { test_low_order_tangent_search(kitten()); }},
     Case{"solver.order2_moments", [] { test_order2_moments(kitten()); }},
+    Case{"solver.pca_eigen_decomposition", test_pca_eigen_decomposition},
   });
 }
