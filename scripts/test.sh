@@ -80,13 +80,16 @@ if [ "${WAVEJETS_SKIP_SANITIZERS:-0}" != 1 ]; then
   # Every UBSan finding and every leak is fatal, except the findings in third-party headers listed
   # (with the reason) in scripts/ubsan_suppressions.txt: UBSan checks are built recoverable so that
   # a suppression can skip a report, and halt_on_error=1 stops the run at any other one. Benchmarks
-  # and the documentation are off (doxygen runs no code of the package). test_fuzz runs 100000 real
-  # fits instead of 1e6 under sanitizers.
+  # and the documentation are off (doxygen runs no code of the package), and of the examples only
+  # the two workflows (each *_example.cpp calls one function that the tests run sanitized; the
+  # seven cost about 7 x 2 min of sanitized compilation). test_fuzz runs 100000 real fits instead
+  # of 1e6 under sanitizers.
   export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1
   export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:suppressions=$root/scripts/ubsan_suppressions.txt"
   ctest_exclude="^(wavejets_headers_self_contained|wavejets_install_and_consume)$"
   run_leg "3. clang++ + CGAL 5.5, ASan + UBSan (Debug -O1)" "${WAVEJETS_ASAN_BUILD_DIR:-build/asan}" \
     -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_COMPILER=clang++ -DWAVEJETS_TESTS_ONLY=OFF -DWAVEJETS_BUILD_BENCHMARKS=OFF \
+    -DWAVEJETS_EXAMPLES=workflows \
     -DCMAKE_DISABLE_FIND_PACKAGE_Doxygen=ON \
     -DCMAKE_CXX_FLAGS="-fsanitize=address,undefined -fno-omit-frame-pointer -fsanitize-recover=undefined -O1"
 else
