@@ -82,7 +82,7 @@ if [ "${WAVEJETS_SKIP_SANITIZERS:-0}" != 1 ]; then
   # a suppression can skip a report, and halt_on_error=1 stops the run at any other one. Benchmarks
   # and the documentation are off (doxygen runs no code of the package), and of the examples only
   # the two workflows (each *_example.cpp calls one function that the tests run sanitized; the
-  # seven cost about 7 x 2 min of sanitized compilation). test_fuzz runs 100000 real fits instead
+  # six cost about 6 x 2 min of sanitized compilation). test_fuzz runs 100000 real fits instead
   # of 1e6 under sanitizers.
   export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1
   export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:suppressions=$root/scripts/ubsan_suppressions.txt"
