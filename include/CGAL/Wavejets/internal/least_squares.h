@@ -100,6 +100,14 @@ struct Double4
   {
     return Double4{{a.lane[0] * b.lane[0], a.lane[1] * b.lane[1], a.lane[2] * b.lane[2], a.lane[3] * b.lane[3]}};
   }
+  friend Double4 operator+(const Double4& a, const Double4& b)
+  {
+    return Double4{{a.lane[0] + b.lane[0], a.lane[1] + b.lane[1], a.lane[2] + b.lane[2], a.lane[3] + b.lane[3]}};
+  }
+  friend Double4 operator-(const Double4& a, const Double4& b)
+  {
+    return Double4{{a.lane[0] - b.lane[0], a.lane[1] - b.lane[1], a.lane[2] - b.lane[2], a.lane[3] - b.lane[3]}};
+  }
   friend Double4 operator+(const Double4& a, double s) // broadcast
   {
     return Double4{{a.lane[0] + s, a.lane[1] + s, a.lane[2] + s, a.lane[3] + s}};
@@ -547,33 +555,46 @@ CGAL_WAVEJETS_KERNEL_INLINE void polar_moment_gram_upper(const double* A, std::s
     power[2 * m - 1] = A + (order_offset(m) + m - 1) * P;
     power[2 * m] = A + (order_offset(m) + m) * P;
   }
-  double* built = scratch;
-  for(std::size_t m = K + 1; m <= 2 * K; ++m, built += 2 * P) // z^m = z^{m-1} z, as evaluate_basis_columns()
+  // The powers z^m, m = K+1..2K, then r^{2a}, 2a > K, into `scratch`, row block by row block: each
+  // value is computed as evaluate_basis_columns() computes the basis (z^m = z^{m-1} z, r^{2a} =
+  // (x^2 + y^2) r^{2a-2}), the chain kept in registers instead of re-read from the column before.
+  const std::size_t first_built_radial = K / 2 + 1; // the first a with 2a > K
+  double* const built_powers = scratch;
+  double* const built_radials = scratch + 2 * K * P;
+  for(std::size_t m = 1; m <= K; ++m)
   {
-    const double* pre = power[2 * m - 3];
-    const double* pim = power[2 * m - 2];
-    double* re = built;
-    double* im = built + P;
-    for(std::size_t l = 0; l < P; ++l)
-    {
-      re[l] = pre[l] * x[l] - pim[l] * y[l];
-      im[l] = pre[l] * y[l] + pim[l] * x[l];
-    }
-    power[2 * m - 1] = re;
-    power[2 * m] = im;
+    power[2 * m - 1 + 2 * K] = built_powers + 2 * (m - 1) * P;
+    power[2 * m + 2 * K] = built_powers + (2 * (m - 1) + 1) * P;
   }
   for(std::size_t a = 0; a <= K; ++a)
+    radial[a] = a < first_built_radial ? A + order_offset(2 * a) * P : built_radials + (a - first_built_radial) * P;
+  const double* last_basis_re = power[2 * K - 1];
+  const double* last_basis_im = power[2 * K];
+  const double* last_basis_radial = radial[first_built_radial - 1];
+  for(std::size_t l = 0; l < P; l += 4)
   {
-    if(2 * a <= K)
+    Double4 xv, yv, re, im, r;
+    load4(xv, x + l);
+    load4(yv, y + l);
+    load4(re, last_basis_re + l);
+    load4(im, last_basis_im + l);
+    for(std::size_t m = K + 1; m <= 2 * K; ++m)
     {
-      radial[a] = A + order_offset(2 * a) * P;
-      continue;
+      const Double4 next_re = re * xv - im * yv;
+      const Double4 next_im = re * yv + im * xv;
+      re = next_re;
+      im = next_im;
+      store4(built_powers + 2 * (m - K - 1) * P + l, re);
+      store4(built_powers + (2 * (m - K - 1) + 1) * P + l, im);
     }
-    const double* below = radial[a - 1];
-    for(std::size_t l = 0; l < P; ++l) built[l] = (x[l] * x[l] + y[l] * y[l]) * below[l];
-    radial[a] = built;
-    built += P;
+    load4(r, last_basis_radial + l);
+    for(std::size_t a = first_built_radial; a <= K; ++a)
+    {
+      r = (xv * xv + yv * yv) * r;
+      store4(built_radials + (a - first_built_radial) * P + l, r);
+    }
   }
+  double* built = built_radials + (K - first_built_radial + 1) * P;
   radial[K + 1] = radial[K]; // the partner of row K when K is even: never read (row K has one column)
   // Moments mu[a * Z + c] = r^{2a} . (column c of the powers), for the c of z^m with 2a + m <= 2K:
   // row a needs the columns c < 4(K - a) + 1. Rows a, a + 1 together by tiles of four columns (row
