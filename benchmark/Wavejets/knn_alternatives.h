@@ -54,15 +54,13 @@ typedef CGAL::Simple_cartesian<double>::Point_3 Knn_point;
 typedef CGAL::Wavejets::internal::Neighbor_query Package_query;
 typedef std::vector<Package_query::Candidate> Knn_candidates;
 
-/// The k first of the candidates, by distance then index, into `out`.
+/// The k first of the candidates, by distance then index, into `out`, as the package orders its
+/// own lists (Neighbor_query::append_nearest_indices_in_order()).
 inline void select_nearest(Knn_candidates& candidates, unsigned int k, std::vector<std::size_t>& out)
 {
-  const std::size_t count = (std::min)(std::size_t(k), candidates.size());
-  if(candidates.size() > count)
-    std::nth_element(candidates.begin(), candidates.begin() + count, candidates.end());
-  std::sort(candidates.begin(), candidates.begin() + count);
+  static thread_local Knn_candidates buffer;
   out.clear();
-  for(std::size_t j = 0; j < count; ++j) out.push_back(Package_query::index_of(candidates[j]));
+  Package_query::append_nearest_indices_in_order(candidates, (std::min)(std::size_t(k), candidates.size()), out, buffer);
 }
 
 /// CGAL's kd-tree over all the points as the package built it before kd_tree.h (sliding midpoint,

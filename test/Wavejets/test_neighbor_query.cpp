@@ -137,7 +137,9 @@ void knn_and_radius_against_brute_force()
                          : s.name.find("huge") != std::string::npos ? 1e150
                          : s.name.find("far") != std::string::npos ? 1e-3 : 1.;
     Neighbor_query::Scratch scratch; // one for every query below: k changes, radius and k-NN mix
-    for(unsigned int k : {1u, 6u, 18u, 40u, 96u})
+    // k up to 32: the search selects the k nearest and ranks them; above, the candidates (up to
+    // 2k + 15) are put in order by buckets (k 40, 96, 200), or sorted above 512 candidates (k 300).
+    for(unsigned int k : {1u, 6u, 18u, 32u, 33u, 40u, 96u, 200u, 300u})
     {
       compare_with_brute_force(s, sorted, query, leaf_order, "leaf order", k, 0., scratch);
       compare_with_brute_force(s, sorted, query, random_order, "random order", k, 0., scratch);

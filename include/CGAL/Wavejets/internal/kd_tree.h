@@ -132,9 +132,11 @@ public:
   /// The min(k, size() - [exclude is in the tree]) points nearest to q, `exclude` left out, as
   /// candidates in `out` (in no particular order): the smallest by (squared distance, index).
   /// `bound`, if given: a squared distance known to hold at least k of them (points farther away
-  /// are not looked at; a wrong bound gives a wrong result).
+  /// are not looked at; a wrong bound gives a wrong result). With `select_k` false, `out` may also
+  /// hold other points (fewer than k + max(k, bucket_size) in all): the caller then picks the k
+  /// smallest, e.g. while putting them in order.
   void k_nearest(const double q[3], std::size_t k, std::size_t exclude, std::vector<Candidate>& out,
-                 double bound = std::numeric_limits<double>::infinity()) const
+                 double bound = std::numeric_limits<double>::infinity(), bool select_k = true) const
   {
     out.clear();
     if(k == 0 || m_nodes.empty()) return;
@@ -143,7 +145,7 @@ public:
     out.resize(state.capacity + bucket_size); // a leaf is scanned before the selection
     state.kept = out.data();
     k_nearest(0, state);
-    if(state.count > k) select(state);
+    if(select_k && state.count > k) select(state);
     out.resize(state.count);
   }
 
