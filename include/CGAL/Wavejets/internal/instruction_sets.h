@@ -22,7 +22,8 @@
 //   CGAL_WAVEJETS_NO_AVX_DISPATCH        baseline code only (no run-time dispatch);
 //   CGAL_WAVEJETS_NO_FMA_DISPATCH        the solver keeps only the AVX variant (least_squares.h).
 // Macros defined here: CGAL_WAVEJETS_AVX_DISPATCH (defined when the dispatch is compiled in),
-// CGAL_WAVEJETS_KERNEL_INLINE (the kernels' inline specifier) and CGAL_WAVEJETS_TARGET(sets).
+// CGAL_WAVEJETS_KERNEL_INLINE (the kernels' inline specifier) and CGAL_WAVEJETS_TARGET(sets),
+// CGAL_WAVEJETS_UNROLL and CGAL_WAVEJETS_NOINLINE.
 #if (defined(__GNUC__) || defined(__clang__)) && (defined(__x86_64__) || defined(__i386__)) && \
     !defined(CGAL_WAVEJETS_NO_AVX_DISPATCH) && !defined(__FMA__)
 #define CGAL_WAVEJETS_AVX_DISPATCH 1
@@ -39,6 +40,16 @@
 #define CGAL_WAVEJETS_UNROLL _Pragma("GCC unroll 16")
 #else
 #define CGAL_WAVEJETS_UNROLL
+#endif
+
+/// Keeps a function out of its callers (a rarely taken path whose inlined code slows its caller's
+/// loop down).
+#if defined(__GNUC__) || defined(__clang__)
+#define CGAL_WAVEJETS_NOINLINE __attribute__((noinline))
+#elif defined(_MSC_VER)
+#define CGAL_WAVEJETS_NOINLINE __declspec(noinline)
+#else
+#define CGAL_WAVEJETS_NOINLINE
 #endif
 
 namespace CGAL {

@@ -119,9 +119,11 @@ public:
 private:
   /// Candidates up to which append_nearest_indices_in_order() ranks instead of sorting.
   static constexpr std::size_t rank_sort_limit = 32;
-  /// Candidates up to which it sorts by buckets, and the number of buckets.
+  /// Candidates up to which it sorts by buckets, the number of buckets, and the most candidates one
+  /// bucket may hold (more: many equal or clustered distances, which std::sort handles better).
   static constexpr std::size_t bucket_sort_limit = 512;
   static constexpr std::size_t sort_buckets = 256;
+  static constexpr std::size_t bucket_crowding_limit = 32;
 
   // The bits of a candidate's squared distance: an unsigned integer in the order of the distance
   // (non-negative doubles order as their bits do).
@@ -137,12 +139,13 @@ private:
   // sort_buckets intervals of equal width of the distance bits (monotone in the candidates' order,
   // so only candidates of one bucket can be out of order afterwards), then an insertion sort, which
   // has almost nothing to do when the distances spread over the buckets (a neighborhood's squared
-  // distances grow about linearly with their rank) and is exact whatever they are (equal distances
-  // only cost it time: quadratic in the number of candidates that share a bucket). Replacing the
+  // distances grow about linearly with their rank) and is exact whatever they are. Its cost is
+  // quadratic in the candidates that share a bucket: returns false, sorting nothing, when a bucket
+  // holds more than bucket_crowding_limit of them (equal or clustered distances). Replacing the
   // search's final std::nth_element and the std::sort of the k nearest, it made the whole k-NN
   // query 1.5x faster at k 96 and 1.4x at k 50 (bunny samples, leaf order, one thread), with the
   // same lists.
-  static void bucket_sort(const Candidate* c, std::size_t n, std::vector<Candidate>& sorted)
+  static bool bucket_sort(const Candidate* c, std::size_t n, std::vector<Candidate>& sorted)
   {
     std::uint64_t lowest = distance_bits(c[0]), highest = lowest;
     for(std::size_t j = 1; j < n; ++j)
@@ -155,7 +158,14 @@ private:
     while(((highest - lowest) >> shift) >= sort_buckets) ++shift;
     std::size_t start[sort_buckets + 1] = {};
     for(std::size_t j = 0; j < n; ++j) ++start[((distance_bits(c[j]) - lowest) >> shift) + 1];
-    for(std::size_t b = 1; b <= sort_buckets; ++b) start[b] += start[b - 1];
+    std::size_t crowded = 0;
+    for(std::size_t b = 1; b <= sort_buckets; ++b)
+    {
+      crowded = (std::max)(crowded, start[b]);
+      start[b] += start[b - 1];
+    }
+    if(crowded > bucket_crowding_limit)
+      return false;
     sorted.resize(n);
     for(std::size_t j = 0; j < n; ++j) sorted[start[(distance_bits(c[j]) - lowest) >> shift]++] = c[j];
     for(std::size_t i = 1; i < n; ++i)
@@ -165,6 +175,7 @@ private:
       for(; j > 0 && x < sorted[j - 1]; --j) sorted[j] = sorted[j - 1];
       sorted[j] = x;
     }
+    return true;
   }
 
 public:
@@ -174,7 +185,7 @@ public:
   /// searches, which then order their lists at the same cost). Up to rank_sort_limit candidates,
   /// each goes to its rank, the number of candidates before it: n^2 comparisons without a branch,
   /// faster than a sort's mispredicted ones at these sizes (the same order: the candidates are
-  /// distinct, their ranks a permutation); then bucket_sort(), then std::sort.
+  /// distinct, their ranks a permutation); then bucket_sort(), else std::sort.
   static const Candidate* append_nearest_indices_in_order(std::vector<Candidate>& c, std::size_t count,
                                                           std::vector<std::size_t>& out, std::vector<Candidate>& buffer)
   {
@@ -195,11 +206,8 @@ public:
       return last;
     }
     const Candidate* sorted = c.data();
-    if(n <= bucket_sort_limit)
-    {
-      bucket_sort(c.data(), n, buffer);
+    if(n <= bucket_sort_limit && bucket_sort(c.data(), n, buffer))
       sorted = buffer.data();
-    }
     else
     {
       if(n > count) std::nth_element(c.begin(), c.begin() + (count - 1), c.end());
