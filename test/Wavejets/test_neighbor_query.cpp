@@ -138,7 +138,8 @@ void knn_and_radius_against_brute_force()
                          : s.name.find("far") != std::string::npos ? 1e-3 : 1.;
     Neighbor_query::Scratch scratch; // one for every query below: k changes, radius and k-NN mix
     // k up to 32: the search selects the k nearest and ranks them; above, the candidates (up to
-    // 2k + 15) are put in order by buckets (k 40, 96, 200), or sorted above 512 candidates (k 300).
+    // 2k + 15) are put in order by buckets (k 40, 96, 200), or sorted where a bucket is crowded (the
+    // duplicates) or above 512 candidates (k 300).
     for(unsigned int k : {1u, 6u, 18u, 32u, 33u, 40u, 96u, 200u, 300u})
     {
       compare_with_brute_force(s, sorted, query, leaf_order, "leaf order", k, 0., scratch);

@@ -116,6 +116,44 @@ public:
     }
   }
 
+  /// Appends the indices of the `count` smallest of the (distinct) candidates `c` to `out`, nearest
+  /// first (ties by index), and returns the last of them (null if count == 0); `c` may be
+  /// reordered, `buffer` is scratch. The last step of neighbors() (public for the benchmark's other
+  /// searches, which then order their lists at the same cost). Up to rank_sort_limit candidates,
+  /// each goes to its rank, the number of candidates before it: n^2 comparisons without a branch,
+  /// faster than a sort's mispredicted ones at these sizes (the same order: the candidates are
+  /// distinct, their ranks a permutation); then bucket_sort(), else std::sort.
+  static const Candidate* append_nearest_indices_in_order(std::vector<Candidate>& c, std::size_t count,
+                                                          std::vector<std::size_t>& out, std::vector<Candidate>& buffer)
+  {
+    const std::size_t n = c.size();
+    if(count == 0) return nullptr;
+    const std::size_t first = out.size();
+    if(n <= rank_sort_limit)
+    {
+      out.resize(first + count);
+      const Candidate* last = c.data();
+      for(std::size_t i = 0; i < n; ++i)
+      {
+        std::size_t rank = 0;
+        for(std::size_t j = 0; j < n; ++j) rank += std::size_t(c[j] < c[i]);
+        if(rank < count) out[first + rank] = index_of(c[i]);
+        last = rank == count - 1 ? c.data() + i : last;
+      }
+      return last;
+    }
+    const Candidate* sorted = c.data();
+    if(n <= bucket_sort_limit && bucket_sort(c.data(), n, buffer))
+      sorted = buffer.data();
+    else
+    {
+      if(n > count) std::nth_element(c.begin(), c.begin() + (count - 1), c.end());
+      std::sort(c.begin(), c.begin() + count);
+    }
+    for(std::size_t j = 0; j < count; ++j) out.push_back(index_of(sorted[j]));
+    return sorted + count - 1;
+  }
+
 private:
   /// Candidates up to which append_nearest_indices_in_order() ranks instead of sorting.
   static constexpr std::size_t rank_sort_limit = 32;
@@ -177,47 +215,6 @@ private:
     }
     return true;
   }
-
-public:
-  /// Appends the indices of the `count` smallest of the (distinct) candidates `c` to `out`, nearest
-  /// first (ties by index), and returns the last of them (null if count == 0); `c` may be
-  /// reordered, `buffer` is scratch. The last step of neighbors() (public for the benchmark's other
-  /// searches, which then order their lists at the same cost). Up to rank_sort_limit candidates,
-  /// each goes to its rank, the number of candidates before it: n^2 comparisons without a branch,
-  /// faster than a sort's mispredicted ones at these sizes (the same order: the candidates are
-  /// distinct, their ranks a permutation); then bucket_sort(), else std::sort.
-  static const Candidate* append_nearest_indices_in_order(std::vector<Candidate>& c, std::size_t count,
-                                                          std::vector<std::size_t>& out, std::vector<Candidate>& buffer)
-  {
-    const std::size_t n = c.size();
-    if(count == 0) return nullptr;
-    const std::size_t first = out.size();
-    if(n <= rank_sort_limit)
-    {
-      out.resize(first + count);
-      const Candidate* last = c.data();
-      for(std::size_t i = 0; i < n; ++i)
-      {
-        std::size_t rank = 0;
-        for(std::size_t j = 0; j < n; ++j) rank += std::size_t(c[j] < c[i]);
-        if(rank < count) out[first + rank] = index_of(c[i]);
-        last = rank == count - 1 ? c.data() + i : last;
-      }
-      return last;
-    }
-    const Candidate* sorted = c.data();
-    if(n <= bucket_sort_limit && bucket_sort(c.data(), n, buffer))
-      sorted = buffer.data();
-    else
-    {
-      if(n > count) std::nth_element(c.begin(), c.begin() + (count - 1), c.end());
-      std::sort(c.begin(), c.begin() + count);
-    }
-    for(std::size_t j = 0; j < count; ++j) out.push_back(index_of(sorted[j]));
-    return sorted + count - 1;
-  }
-
-private:
 
   // A squared distance holding the k nearest of point i, from the previous k-NN search in
   // `scratch` (of point j, same k, j in the tree): the ball of radius |p_i - p_j| + d_k(j) around
