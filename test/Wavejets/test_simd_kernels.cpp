@@ -1,9 +1,11 @@
 // The least-squares solvers of least_squares.h, the Householder QR and the guarded semi-normal
-// equations (each in three compilations: the baseline code, the AVX clone and the AVX2 + FMA
-// clone), run on the same systems, with whichever compiler built this test (g++ and clang++ both
+// equations (each in four compilations: the baseline code, the AVX clone, the AVX2 + FMA clone and
+// the AVX-512 clone), run on the same systems, with whichever compiler built this test (g++ and clang++ both
 // run it in scripts/test.sh). Checks the documented agreement, for each solver:
 //   - AVX == baseline, bitwise (same arithmetic, wider registers);
 //   - AVX2 + FMA agrees with the baseline to 1e-12 relative, times the system's condition number;
+//   - AVX-512 == AVX2 + FMA, bitwise, except the order-2 moments kernel (eight rows per step), which
+//     agrees with the baseline as AVX2 + FMA does;
 //   - the baseline solves the system to 1e-13 relative (times the condition number) of Eigen's
 //     HouseholderQR;
 //   - the run-time dispatch (householder_least_squares) picks the best clone the processor
@@ -160,6 +162,9 @@ static bool processor_has_avx() { return false; }
 static bool processor_has_fma() { return false; }
 #endif
 
+/// True if this build has the AVX-512 clone and the processor runs it.
+static bool processor_has_avx512() { return WI::processor_runs_avx512(); }
+
 /// The compilations of solver S.
 template <WI::Solver S>
 struct Variants
@@ -167,6 +172,7 @@ struct Variants
   static constexpr Kernel baseline = &WI::solver_kernel<S>;
   static constexpr Kernel avx = &WI::solver_avx<S>;
   static constexpr Kernel fma = &WI::solver_fma<S>;
+  static constexpr Kernel avx512 = &WI::solver_avx512<S>;
   static constexpr Kernel dispatched = &WI::dispatch_solver<S>;
   static const char* name()
   {
@@ -182,20 +188,21 @@ static void test_full_rank_agreement()
   typedef Variants<S> V;
   std::cout << "solver: " << V::name() << std::endl;
   const std::vector<System> systems = random_systems();
-  const bool has_avx = processor_has_avx(), has_fma = processor_has_fma();
+  const bool has_avx = processor_has_avx(), has_fma = processor_has_fma(), has_avx512 = processor_has_avx512();
   if(!WI::avx_dispatch)
     std::cout << "this build has no AVX dispatch (not x86 with g++/clang++, or CGAL_WAVEJETS_NO_AVX_DISPATCH): "
                  "the baseline kernel alone is checked" << std::endl;
 
-  double worst_baseline = 0., worst_fma = 0.;
-  bool avx_bitwise = true, fma_close = true, dispatch_ok = true, all_solved = true;
+  double worst_baseline = 0., worst_fma = 0., worst_avx512 = 0.;
+  bool avx_bitwise = true, fma_close = true, avx512_as_documented = true, dispatch_ok = true, all_solved = true;
   std::size_t fma_differs = 0; // systems where FMA changes bits (the comparison is not vacuous)
+  std::size_t avx512_differs = 0; // systems where the AVX-512 clone's bits differ from the FMA clone's
   for(const System& s : systems)
   {
     const Eigen::JacobiSVD<Eigen::MatrixXd> svd(s.M);
     const double condition = svd.singularValues()(0) / svd.singularValues()(s.cols - 1);
     const Eigen::VectorXd reference = s.M.householderQr().solve(s.b);
-    std::vector<double> ref(reference.data(), reference.data() + s.cols), base, avx, fma, dispatched;
+    std::vector<double> ref(reference.data(), reference.data() + s.cols), base, avx, fma, avx512, dispatched;
 
     all_solved = all_solved && solve(V::baseline, s, base);
     worst_baseline = (std::max)(worst_baseline, relative_difference(base, ref) / condition);
@@ -213,7 +220,17 @@ static void test_full_rank_agreement()
       fma_close = fma_close && d <= 1e-12 * condition;
       fma_differs += fma != base;
     }
-    const std::vector<double>& best = has_fma ? fma : has_avx ? avx : base;
+    if(has_avx512)
+    {
+      all_solved = all_solved && solve(V::avx512, s, avx512);
+      const double d = relative_difference(avx512, base);
+      worst_avx512 = (std::max)(worst_avx512, d / condition);
+      avx512_differs += avx512 != fma;
+      // The order-2 kernel sums eight rows per step; every other solver is the FMA clone's code.
+      avx512_as_documented = avx512_as_documented &&
+                             (S == WI::Solver::ORDER2_MOMENTS ? d <= 1e-12 * condition : avx512 == fma);
+    }
+    const std::vector<double>& best = has_avx512 ? avx512 : has_fma ? fma : has_avx ? avx : base;
     dispatch_ok = dispatch_ok && dispatched == best;
   }
   const std::string n = std::to_string(systems.size()) + " systems";
@@ -226,8 +243,19 @@ static void test_full_rank_agreement()
                                  " relative / condition number (<= 1e-12); bits differ on " +
                                  std::to_string(fma_differs) + " of " + n);
   else std::cout << "[SKIP] AVX2 + FMA clone: the processor has no AVX2 + FMA" << std::endl;
-  check_printed(dispatch_ok, std::string("the dispatch picks the ") + (has_fma ? "AVX2 + FMA" : has_avx ? "AVX" : "baseline") +
-                       " kernel (bitwise equal to it)");
+  if(has_avx512)
+    check_printed(avx512_as_documented,
+                  S == WI::Solver::ORDER2_MOMENTS
+                    ? "AVX-512 clone (eight rows per step) vs baseline: " + sci(worst_avx512) +
+                        " relative / condition number (<= 1e-12); bits differ from the FMA clone's on " +
+                        std::to_string(avx512_differs) + " of " + n
+                    : "AVX-512 clone == AVX2 + FMA clone, bitwise, on " + n);
+  else
+    std::cout << "[SKIP] AVX-512 clone: "
+              << (WI::avx512_dispatch ? "the processor has no AVX-512" : "not in this build") << std::endl;
+  check_printed(dispatch_ok, std::string("the dispatch picks the ") +
+                               (has_avx512 ? "AVX-512" : has_fma ? "AVX2 + FMA" : has_avx ? "AVX" : "baseline") +
+                               " kernel (bitwise equal to it)");
 }
 
 // A rank-deficient system (two equal columns) is reported by every variant.
@@ -242,6 +270,7 @@ static void test_rank_deficient_reported()
   bool reported = !solve(V::baseline, deficient, c) && !solve(V::dispatched, deficient, c);
   if(has_avx) reported = reported && !solve(V::avx, deficient, c);
   if(has_fma) reported = reported && !solve(V::fma, deficient, c);
+  if(processor_has_avx512()) reported = reported && !solve(V::avx512, deficient, c);
   check_printed(reported, std::string(V::name()) + ": a rank-deficient system is reported by every variant");
 }
 
@@ -390,13 +419,13 @@ static void test_wavejet_semi_normal_on_wavejet_systems()
   const std::vector<System> high = wavejet_systems(1800, random, 5, 2.); // orders 5 to 10, 2 to 4 per unknown
   systems.insert(systems.end(), high.begin(), high.end());
   typedef Variants<WI::Solver::WAVEJET_SEMI_NORMAL_ELSE_QR> V;
-  const bool has_avx = processor_has_avx(), has_fma = processor_has_fma();
+  const bool has_avx = processor_has_avx(), has_fma = processor_has_fma(), has_avx512 = processor_has_avx512();
   double worst = 0., worst_gram = 0., worst_baseline = 0.;
   std::size_t polar = 0, own[3] = {0, 0, 0}, own_by_dots[3] = {0, 0, 0}, per_shape[3] = {0, 0, 0};
-  bool all_solved = true, same_elsewhere = true, avx_bitwise = true, dispatch_ok = true;
+  bool all_solved = true, same_elsewhere = true, avx_bitwise = true, avx512_bitwise = true, dispatch_ok = true;
   bool solution_only_same = true, solution_only_keeps_A = true;
   std::size_t kept_checked = 0;
-  std::vector<double> qr, mine, other, base, avx, fma, solution_only;
+  std::vector<double> qr, mine, other, base, avx, fma, avx512, solution_only;
   // The solves without R (what the fits run unless the condition number is asked for).
   const Kernel wavejet_solution = [](double* A, std::size_t rows, std::size_t cols, double* v, double* c) {
     return WI::least_squares_solution(A, rows, cols, v, c, true);
@@ -461,7 +490,12 @@ static void test_wavejet_semi_normal_on_wavejet_systems()
     }
     if(has_fma)
       solve(V::fma, s, fma);
-    dispatch_ok = dispatch_ok && mine == (has_fma ? fma : has_avx ? avx : base);
+    if(has_avx512)
+    {
+      solve(V::avx512, s, avx512);
+      avx512_bitwise = avx512_bitwise && avx512 == fma;
+    }
+    dispatch_ok = dispatch_ok && mine == (has_avx512 ? avx512 : has_fma ? fma : has_avx ? avx : base);
   }
   const std::string n = std::to_string(systems.size()) + " Wavejet systems (orders 1 to 10)";
   check_printed(all_solved, "QR and wavejet_least_squares() solve the " + n);
@@ -477,8 +511,8 @@ static void test_wavejet_semi_normal_on_wavejet_systems()
   check_printed(solution_only_keeps_A, "... and leave those systems unchanged");
   check_printed(worst_gram <= 1e-13, "Gram matrix from polar moments vs dot products: " + sci(worst_gram) +
                                        " relative to the diagonal (<= 1e-13) on the uniform samples");
-  check_printed(worst <= 1e-10, "wavejet_least_squares() vs QR (dispatched: " +
-                                  std::string(has_fma ? "AVX2 + FMA" : has_avx ? "AVX" : "baseline") + "): " + sci(worst) +
+  const std::string dispatched = has_avx512 ? "AVX-512" : has_fma ? "AVX2 + FMA" : has_avx ? "AVX" : "baseline";
+  check_printed(worst <= 1e-10, "wavejet_least_squares() vs QR (dispatched: " + dispatched + "): " + sci(worst) +
                                   " relative (<= 1e-10) on the " + std::to_string(polar) + " systems that qualify for the moments (with "
                                   "those its guards hand to the QR)");
   check_printed(own[0] == per_shape[0], "the semi-normal equations with the moments solved " + std::to_string(own[0]) +
@@ -490,6 +524,8 @@ static void test_wavejet_semi_normal_on_wavejet_systems()
   check_printed(worst_baseline <= 1e-10, "baseline compilation vs its QR: " + sci(worst_baseline) + " relative (<= 1e-10)");
   if(has_avx) check_printed(avx_bitwise, "AVX clone == baseline, bitwise");
   else std::cout << "[SKIP] AVX clone: the processor has no AVX" << std::endl;
+  if(has_avx512) check_printed(avx512_bitwise, "AVX-512 clone == AVX2 + FMA clone, bitwise");
+  else std::cout << "[SKIP] AVX-512 clone: not in this build or not on this processor" << std::endl;
   check_printed(dispatch_ok, "the dispatch picks the clone the processor supports (bitwise equal to it)");
 }
 
@@ -502,6 +538,7 @@ static void test_order2_moments_on_wavejet_systems()
   std::vector<std::pair<std::string, Kernel> > variants = {{"baseline", V::baseline}, {"dispatched", V::dispatched}};
   if(processor_has_avx()) variants.emplace_back("AVX", V::avx);
   if(processor_has_fma()) variants.emplace_back("AVX2 + FMA", V::fma);
+  if(processor_has_avx512()) variants.emplace_back("AVX-512", V::avx512);
   std::size_t systems = 0, own[3] = {0, 0, 0}, per_shape[3] = {0, 0, 0};
   double worst = 0.;
   bool qr_solved = true;

@@ -20,7 +20,8 @@
 // user's opt-out macros (documented in the manual's installation section; define them before
 // including any header of the package):
 //   CGAL_WAVEJETS_NO_AVX_DISPATCH        baseline code only (no run-time dispatch);
-//   CGAL_WAVEJETS_NO_FMA_DISPATCH        the solver keeps only the AVX variant (least_squares.h).
+//   CGAL_WAVEJETS_NO_FMA_DISPATCH        the solver keeps only the AVX variant (least_squares.h);
+//   CGAL_WAVEJETS_NO_AVX512_DISPATCH     the solver has no AVX-512 variant (least_squares.h).
 // Macros defined here: CGAL_WAVEJETS_AVX_DISPATCH (defined when the dispatch is compiled in),
 // CGAL_WAVEJETS_KERNEL_INLINE (the kernels' inline specifier) and CGAL_WAVEJETS_TARGET(sets),
 // CGAL_WAVEJETS_UNROLL and CGAL_WAVEJETS_NOINLINE.

@@ -41,11 +41,14 @@
 #include <utility>
 #include <vector>
 
-// The solver is also compiled for AVX and for AVX2 with FMA (the compiler fuses multiply-adds,
-// ~1.3x faster; results differ in the last bits from the other two), picked at run time
-// (instruction_sets.h). The user's opt-out macros (documented in the manual's installation
-// section; define them before including any header of the package), besides instruction_sets.h's:
+// The solver is also compiled for AVX, for AVX2 with FMA (the compiler fuses multiply-adds,
+// ~1.3x faster; results differ in the last bits from the other two) and for AVX-512 (the order-2
+// kernel eight rows per step: its results differ in the last bits from the AVX2 + FMA variant's,
+// the other solvers' are bitwise the same), picked at run time (instruction_sets.h). The user's
+// opt-out macros (documented in the manual's installation section; define them before including
+// any header of the package), besides instruction_sets.h's:
 //   CGAL_WAVEJETS_NO_FMA_DISPATCH        keep only the AVX variant (results bitwise equal to baseline);
+//   CGAL_WAVEJETS_NO_AVX512_DISPATCH     no AVX-512 variant (AVX2 + FMA is the best);
 //   CGAL_WAVEJETS_NO_SEMI_NORMAL         every system built and solved by the Householder QR (also the
 //                                        order-2 fits, which are otherwise solved from their moments);
 //   CGAL_WAVEJETS_NO_VECTOR_EXTENSIONS   the kernels' four-lane type is a plain struct instead of the
@@ -127,6 +130,29 @@ struct Double4
 
 CGAL_WAVEJETS_KERNEL_INLINE void load4(Double4& r, const double* p) { std::memcpy(&r, p, sizeof r); }
 CGAL_WAVEJETS_KERNEL_INLINE void store4(double* p, const Double4& x) { std::memcpy(p, &x, sizeof x); }
+
+// The AVX-512 variant of the solver (dispatch_solver()): compiled where the AVX2 + FMA one is and the
+// vector extension exists, unless CGAL_WAVEJETS_NO_AVX512_DISPATCH is defined.
+#if defined(CGAL_WAVEJETS_AVX_DISPATCH) && !defined(CGAL_WAVEJETS_NO_FMA_DISPATCH) && \
+    !defined(CGAL_WAVEJETS_NO_AVX512_DISPATCH) && !defined(CGAL_WAVEJETS_NO_VECTOR_EXTENSIONS)
+#define CGAL_WAVEJETS_AVX512_DISPATCH 1
+/// Eight doubles (one AVX-512 register): the lanes of the order-2 kernel in the AVX-512 variant.
+typedef double Double8 __attribute__((vector_size(64)));
+#endif
+
+/// Lanes in a vector of `Lanes` (Double4 or Double8).
+template <class Lanes>
+constexpr std::size_t lane_count()
+{
+  return sizeof(Lanes) / sizeof(double);
+}
+
+/// Loads lane_count<Lanes>() doubles from p (unaligned).
+template <class Lanes>
+CGAL_WAVEJETS_KERNEL_INLINE void load_lanes(Lanes& r, const double* p)
+{
+  std::memcpy(&r, p, sizeof r);
+}
 
 /// w[m] = sum_{i = begin}^{end-1} v[i] x_m[i] for the M columns x_m = X + m * P (begin, end:
 /// multiples of householder_block), with one partial sum per row residue (see reduce_block()).
@@ -384,6 +410,17 @@ CGAL_WAVEJETS_KERNEL_INLINE double reduce4(const Double4& x)
   store4(a, x);
   return (a[0] + a[2]) + (a[1] + a[3]);
 }
+
+/// Sum of the lanes, in a fixed order (reduce4(), or reduce_block() of the eight lanes).
+CGAL_WAVEJETS_KERNEL_INLINE double reduce_lanes(const Double4& x) { return reduce4(x); }
+#ifdef CGAL_WAVEJETS_AVX512_DISPATCH
+CGAL_WAVEJETS_KERNEL_INLINE double reduce_lanes(const Double8& x)
+{
+  double a[8];
+  std::memcpy(a, &x, sizeof a);
+  return reduce_block(a);
+}
+#endif
 
 /// The Gram block G(i + a, j + m) = column (i + a) . column (j + m) of X (stride P, rows 0..P-1) for
 /// a < 2, m < 4: the two columns i, i+1 are loaded once for four columns j.., and each of the
@@ -1005,15 +1042,17 @@ private:
   }
 };
 
-/// Sums over points of v, x v, y v, x^2 v, x y v and y^2 v, four lanes each (named members: the
-/// compiler keeps them in registers): M^T v for the order-2 Wavejet basis, from the monomials of
-/// degree at most 2 (basis_products()). Gathers M^T h, and M^T r in the refinement.
+/// Sums over points of v, x v, y v, x^2 v, x y v and y^2 v, one vector of `Lanes` (Double4 or
+/// Double8) each (named members: the compiler keeps them in registers): M^T v for the order-2 Wavejet
+/// basis, from the monomials of degree at most 2 (basis_products()). Gathers M^T h, and M^T r in
+/// the refinement.
+template <class Lanes>
 struct Quadratic_moments
 {
-  Double4 one, x, y, xx, xy, yy;
+  Lanes one, x, y, xx, xy, yy;
 
-  CGAL_WAVEJETS_KERNEL_INLINE void add(const Double4& xv, const Double4& yv, const Double4& xxv, const Double4& xyv,
-                                       const Double4& yyv, const Double4& v)
+  CGAL_WAVEJETS_KERNEL_INLINE void add(const Lanes& xv, const Lanes& yv, const Lanes& xxv, const Lanes& xyv,
+                                       const Lanes& yyv, const Lanes& v)
   {
     one += v;
     x += xv * v;
@@ -1026,13 +1065,13 @@ struct Quadratic_moments
   /// M^T v in the order of the basis (1, x, y, x^2 + y^2, x^2 - y^2, 2xy).
   CGAL_WAVEJETS_KERNEL_INLINE void basis_products(double* out) const
   {
-    const double sxx = reduce4(xx), syy = reduce4(yy);
-    out[0] = reduce4(one);
-    out[1] = reduce4(x);
-    out[2] = reduce4(y);
+    const double sxx = reduce_lanes(xx), syy = reduce_lanes(yy);
+    out[0] = reduce_lanes(one);
+    out[1] = reduce_lanes(x);
+    out[2] = reduce_lanes(y);
     out[3] = sxx + syy;
     out[4] = sxx - syy;
-    out[5] = 2. * reduce4(xy);
+    out[5] = 2. * reduce_lanes(xy);
   }
 };
 
@@ -1043,9 +1082,14 @@ struct Quadratic_moments
 /// third pass. `X` holds three columns x, y, h of stride padded_rows(L), zero on the padding
 /// rows. The same guards as semi_normal_kernel(): false (c undefined) sends the system to the
 /// general solver. Measured in results.md's least-squares table (101 points: the moments against
-/// the QR of the built system).
+/// the QR of the built system). `Lanes`: the rows per step, Double4, or Double8 in the AVX-512
+/// variant (the partial sums then fall into eight residues of the row mod 8, not four: the same
+/// moments up to rounding).
+template <class Lanes = Double4>
 CGAL_WAVEJETS_KERNEL_INLINE bool order2_moments_kernel(const double* X, std::size_t L, double* c)
 {
+  constexpr std::size_t W = lane_count<Lanes>();
+  static_assert(householder_block % W == 0, "whole vectors per padded column");
   constexpr std::size_t n = order2_columns;
   if(L < n)
     return false;
@@ -1053,17 +1097,17 @@ CGAL_WAVEJETS_KERNEL_INLINE bool order2_moments_kernel(const double* X, std::siz
   const double* x = X;
   const double* y = X + P;
   const double* h = X + 2 * P;
-  const Double4 zero = {0., 0., 0., 0.};
+  const Lanes zero = Lanes{};
   // Moments, one named accumulator each (two passes, so that each pass's accumulators stay in
   // registers): sum x^p y^q for p + q <= 4 and sum x^p y^q h for p + q <= 2.
-  Double4 sx = zero, sy = zero, sxx = zero, sxy = zero, syy = zero, sxxx = zero, sxxy = zero, sxyy = zero,
-          syyy = zero;
-  for(std::size_t l = 0; l < P; l += 4)
+  Lanes sx = zero, sy = zero, sxx = zero, sxy = zero, syy = zero, sxxx = zero, sxxy = zero, sxyy = zero,
+        syyy = zero;
+  for(std::size_t l = 0; l < P; l += W)
   {
-    Double4 xv, yv;
-    load4(xv, x + l);
-    load4(yv, y + l);
-    const Double4 xxv = xv * xv, xyv = xv * yv, yyv = yv * yv;
+    Lanes xv, yv;
+    load_lanes(xv, x + l);
+    load_lanes(yv, y + l);
+    const Lanes xxv = xv * xv, xyv = xv * yv, yyv = yv * yv;
     sx += xv;
     sy += yv;
     sxx += xxv;
@@ -1074,15 +1118,15 @@ CGAL_WAVEJETS_KERNEL_INLINE bool order2_moments_kernel(const double* X, std::siz
     sxyy += yyv * xv;
     syyy += yyv * yv;
   }
-  Double4 sxxxx = zero, sxxxy = zero, sxxyy = zero, sxyyy = zero, syyyy = zero;
-  Quadratic_moments heights = {zero, zero, zero, zero, zero, zero};
-  for(std::size_t l = 0; l < P; l += 4)
+  Lanes sxxxx = zero, sxxxy = zero, sxxyy = zero, sxyyy = zero, syyyy = zero;
+  Quadratic_moments<Lanes> heights = {zero, zero, zero, zero, zero, zero};
+  for(std::size_t l = 0; l < P; l += W)
   {
-    Double4 xv, yv, hv;
-    load4(xv, x + l);
-    load4(yv, y + l);
-    load4(hv, h + l);
-    const Double4 xxv = xv * xv, xyv = xv * yv, yyv = yv * yv;
+    Lanes xv, yv, hv;
+    load_lanes(xv, x + l);
+    load_lanes(yv, y + l);
+    load_lanes(hv, h + l);
+    const Lanes xxv = xv * xv, xyv = xv * yv, yyv = yv * yv;
     sxxxx += xxv * xxv;
     sxxxy += xxv * xyv;
     sxxyy += xxv * yyv;
@@ -1090,9 +1134,10 @@ CGAL_WAVEJETS_KERNEL_INLINE bool order2_moments_kernel(const double* X, std::siz
     syyyy += yyv * yyv;
     heights.add(xv, yv, xxv, xyv, yyv, hv);
   }
-  const double x1 = reduce4(sx), y1 = reduce4(sy), x2 = reduce4(sxx), xy = reduce4(sxy), y2 = reduce4(syy),
-               x3 = reduce4(sxxx), x2y = reduce4(sxxy), xy2 = reduce4(sxyy), y3 = reduce4(syyy), x4 = reduce4(sxxxx),
-               x3y = reduce4(sxxxy), x2y2 = reduce4(sxxyy), xy3 = reduce4(sxyyy), y4 = reduce4(syyyy);
+  const double x1 = reduce_lanes(sx), y1 = reduce_lanes(sy), x2 = reduce_lanes(sxx), xy = reduce_lanes(sxy),
+               y2 = reduce_lanes(syy), x3 = reduce_lanes(sxxx), x2y = reduce_lanes(sxxy), xy2 = reduce_lanes(sxyy),
+               y3 = reduce_lanes(syyy), x4 = reduce_lanes(sxxxx), x3y = reduce_lanes(sxxxy), x2y2 = reduce_lanes(sxxyy),
+               xy3 = reduce_lanes(sxyyy), y4 = reduce_lanes(syyyy);
   // Gram matrix of the columns (1, x, y, x^2 + y^2, x^2 - y^2, 2xy), upper triangle, and M^T h.
   const double gram[n][n] = {{double(L), x1, y1, x2 + y2, x2 - y2, 2. * xy},
                              {0., x2, xy, x3 + xy2, x3 - xy2, 2. * x2y},
@@ -1106,17 +1151,17 @@ CGAL_WAVEJETS_KERNEL_INLINE bool order2_moments_kernel(const double* X, std::siz
   if(!solver.factor_and_solve(gram, rhs, c))
     return false;
   // Refinement: r = h - M c in a third pass, M^T r, solve, c += dc.
-  const Double4 c0 = zero + c[0], c1 = zero + c[1], c2 = zero + c[2], cxx = zero + (c[3] + c[4]),
-                cyy = zero + (c[3] - c[4]), cxy = zero + 2. * c[5];
-  Quadratic_moments residuals = {zero, zero, zero, zero, zero, zero};
-  const std::size_t whole = L / 4 * 4; // rows where the constant column is 1 in every lane
-  for(std::size_t l = 0; l < P; l += 4)
+  const Lanes c0 = zero + c[0], c1 = zero + c[1], c2 = zero + c[2], cxx = zero + (c[3] + c[4]),
+              cyy = zero + (c[3] - c[4]), cxy = zero + 2. * c[5];
+  Quadratic_moments<Lanes> residuals = {zero, zero, zero, zero, zero, zero};
+  const std::size_t whole = L / W * W; // rows where the constant column is 1 in every lane
+  for(std::size_t l = 0; l < P; l += W)
   {
-    Double4 xv, yv, r;
-    load4(xv, x + l);
-    load4(yv, y + l);
-    load4(r, h + l);
-    const Double4 xxv = xv * xv, xyv = xv * yv, yyv = yv * yv;
+    Lanes xv, yv, r;
+    load_lanes(xv, x + l);
+    load_lanes(yv, y + l);
+    load_lanes(r, h + l);
+    const Lanes xxv = xv * xv, xyv = xv * yv, yyv = yv * yv;
     r -= c1 * xv;
     r -= c2 * yv;
     r -= cxx * xxv;
@@ -1126,10 +1171,10 @@ CGAL_WAVEJETS_KERNEL_INLINE bool order2_moments_kernel(const double* X, std::siz
       r -= c0;
     else // the constant column is 1 on the rows l < L only
     {
-      double lanes[4];
-      for(std::size_t k = 0; k < 4; ++k) lanes[k] = l + k < L ? c[0] : 0.;
-      Double4 ones;
-      load4(ones, lanes);
+      double lanes[W];
+      for(std::size_t k = 0; k < W; ++k) lanes[k] = l + k < L ? c[0] : 0.;
+      Lanes ones;
+      load_lanes(ones, lanes);
       r -= ones;
     }
     residuals.add(xv, yv, xxv, xyv, yyv, r);
@@ -1196,7 +1241,8 @@ enum class Solver
 };
 
 /// Solver S on A; `with_R` false: R need not be returned (the semi-normal solvers then skip it).
-template <Solver S, bool with_R = true>
+/// `Lanes`: the vector type of the order-2 kernel (the other solvers use Double4).
+template <Solver S, bool with_R = true, class Lanes = Double4>
 CGAL_WAVEJETS_KERNEL_INLINE bool solver_kernel(double* A, std::size_t rows, std::size_t cols, double* scratch, double* c)
 {
   switch(S)
@@ -1204,7 +1250,7 @@ CGAL_WAVEJETS_KERNEL_INLINE bool solver_kernel(double* A, std::size_t rows, std:
   case Solver::HOUSEHOLDER_QR: return householder_kernel(A, rows, cols, scratch, c);
   case Solver::SEMI_NORMAL_ELSE_QR: return least_squares_kernel<with_R>(A, rows, cols, scratch, c);
   case Solver::WAVEJET_SEMI_NORMAL_ELSE_QR: return wavejet_least_squares_kernel<with_R>(A, rows, cols, scratch, c);
-  case Solver::ORDER2_MOMENTS: return order2_moments_kernel(A, rows, c);
+  case Solver::ORDER2_MOMENTS: return order2_moments_kernel<Lanes>(A, rows, c);
   }
   return false;
 }
@@ -1222,6 +1268,49 @@ CGAL_WAVEJETS_TARGET("avx") inline bool solver_avx(double* A, std::size_t rows, 
   return solver_kernel<S, with_R>(A, rows, cols, v, c);
 }
 
+/// True if the solver is also compiled for AVX-512 (with AVX2 + FMA) and picked at run time where
+/// the processor has it.
+#ifdef CGAL_WAVEJETS_AVX512_DISPATCH
+constexpr bool avx512_dispatch = true;
+#else
+constexpr bool avx512_dispatch = false;
+#endif
+
+/// True if the processor runs solver_avx512() (AVX-512 F, VL and DQ, AVX2 and FMA; the same answer
+/// for the whole run); false where that variant is not compiled in.
+inline bool processor_runs_avx512()
+{
+#ifdef CGAL_WAVEJETS_AVX512_DISPATCH
+  static const bool avx512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+                             __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx2") &&
+                             __builtin_cpu_supports("fma");
+  return avx512;
+#else
+  return false;
+#endif
+}
+
+#ifdef CGAL_WAVEJETS_AVX512_DISPATCH
+/// The kernel compiled for AVX-512 (run it only where processor_runs_avx512()). The order-2 kernel
+/// takes eight rows per step (Double8): its moments' partial sums differ, hence its solutions up to
+/// rounding; the other solvers keep their four-lane code, which the compiler gives twice as many
+/// registers (the same operations: bitwise the AVX2 + FMA variant's results, checked by
+/// test_simd_kernels), measured 3% (order 6) to 15% (order 4) faster on AMD Zen 5.
+template <Solver S, bool with_R = true>
+CGAL_WAVEJETS_TARGET("avx512f,avx512vl,avx512dq,avx2,fma")
+inline bool solver_avx512(double* A, std::size_t rows, std::size_t cols, double* v, double* c)
+{
+  return solver_kernel<S, with_R, Double8>(A, rows, cols, v, c);
+}
+#else
+/// Not compiled in: the AVX2 + FMA variant (processor_runs_avx512() is false; never dispatched).
+template <Solver S, bool with_R = true>
+inline bool solver_avx512(double* A, std::size_t rows, std::size_t cols, double* v, double* c)
+{
+  return solver_fma<S, with_R>(A, rows, cols, v, c);
+}
+#endif
+
 /// Runs solver S compiled for the best instruction set the processor has (the same for every call).
 template <Solver S, bool with_R = true>
 inline bool dispatch_solver(double* A, std::size_t rows, std::size_t cols, double* v, double* c)
@@ -1232,6 +1321,8 @@ inline bool dispatch_solver(double* A, std::size_t rows, std::size_t cols, doubl
 #else
   const bool fma = false;
 #endif
+  if(processor_runs_avx512())
+    return solver_avx512<S, with_R>(A, rows, cols, v, c);
   if(fma)
     return solver_fma<S, with_R>(A, rows, cols, v, c);
   if(processor_runs_avx())
