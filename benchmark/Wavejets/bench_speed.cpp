@@ -743,6 +743,19 @@ static std::string qr_comparison_row(const Points& points, std::size_t order, un
   return s.str();
 }
 
+/// The compilation of the least-squares kernels that WI::dispatch_solver() runs on this processor.
+static std::string solver_variant()
+{
+  if(WI::processor_runs_avx512())
+    return "AVX-512 (the order-2 fits eight neighbors per step)";
+#if (defined(__GNUC__) || defined(__clang__)) && (defined(__x86_64__) || defined(__i386__)) && \
+    !defined(CGAL_WAVEJETS_NO_FMA_DISPATCH)
+  if(WI::avx_dispatch && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"))
+    return "AVX2 + FMA";
+#endif
+  return WI::processor_runs_avx() ? "AVX" : "baseline";
+}
+
 static std::string qr_comparison_table(const Points& points)
 {
   std::string table = "| K | k | system | systems | hand-written QR, dispatch (us) | baseline kernel (us) | "
@@ -755,8 +768,8 @@ static std::string qr_comparison_table(const Points& points)
                                                        std::make_pair(std::size_t(4), 32u), std::make_pair(std::size_t(6), 96u)})
     table += qr_comparison_row(points, c.first, c.second);
   return table + "\nOne thread; each solve includes copying the system into the solver's scratch (Eigen's "
-                 "`compute` copies it too). `dispatch` is the code the package runs (AVX2 + FMA or AVX where the "
-                 "processor has them), `baseline` the portable code; the difference is relative to the largest "
+                 "`compute` copies it too). `dispatch` is the code the package runs (AVX-512, AVX2 + FMA or AVX where the "
+                 "processor has them: see the Machine line), `baseline` the portable code; the difference is relative to the largest "
                  "coefficient of each solution.\n";
 }
 
@@ -1210,7 +1223,7 @@ int main(int argc, char** argv)
      << std::thread::hardware_concurrency() << " hardware threads ("
      << shell_line("lscpu | sed -n 's/^Core(s) per socket: *//p' | head -1") << " cores per socket), "
      << shell_line("awk '/MemTotal/ {printf \"%.1f GB\", $2/1048576}' /proc/meminfo") << " RAM; TBB threads: "
-     << max_threads() << "\n"
+     << max_threads() << "; the solver's variant the dispatch runs: " << solver_variant() << "\n"
      << "* Git commit: " << shell_line("git -C '" + source_dir() + "' rev-parse --short HEAD 2>/dev/null") << "\n"
      << "* Input: N = " << o.n << " points sampled uniformly on `data/bunny00.off` (CGAL::Random_points_in_triangle_mesh_3, "
      << "CGAL::Random seed " << o.seed << ")\n"
