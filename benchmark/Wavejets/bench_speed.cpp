@@ -748,11 +748,8 @@ static std::string solver_variant()
 {
   if(WI::processor_runs_avx512())
     return "AVX-512 (the order-2 fits eight neighbors per step)";
-#if (defined(__GNUC__) || defined(__clang__)) && (defined(__x86_64__) || defined(__i386__)) && \
-    !defined(CGAL_WAVEJETS_NO_FMA_DISPATCH)
-  if(WI::avx_dispatch && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"))
+  if(WI::processor_runs_fma())
     return "AVX2 + FMA";
-#endif
   return WI::processor_runs_avx() ? "AVX" : "baseline";
 }
 
@@ -768,8 +765,9 @@ static std::string qr_comparison_table(const Points& points)
                                                        std::make_pair(std::size_t(4), 32u), std::make_pair(std::size_t(6), 96u)})
     table += qr_comparison_row(points, c.first, c.second);
   return table + "\nOne thread; each solve includes copying the system into the solver's scratch (Eigen's "
-                 "`compute` copies it too). `dispatch` is the code the package runs (AVX-512, AVX2 + FMA or AVX where the "
-                 "processor has them: see the Machine line), `baseline` the portable code; the difference is relative to the largest "
+                 "`compute` copies it too). `dispatch` is the code the package runs (AVX-512, AVX2 + FMA or AVX "
+                 "where the processor has them: see the Machine line), `baseline` the portable code; the "
+                 "difference is relative to the largest "
                  "coefficient of each solution.\n";
 }
 

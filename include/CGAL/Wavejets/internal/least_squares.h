@@ -53,7 +53,8 @@
 //                                        order-2 fits, which are otherwise solved from their moments);
 //   CGAL_WAVEJETS_NO_VECTOR_EXTENSIONS   the kernels' four-lane type is a plain struct instead of the
 //                                        GCC/Clang vector extension (what other compilers get): same
-//                                        arithmetic per lane, so bitwise the same results.
+//                                        arithmetic per lane, so bitwise the same results, except that
+//                                        there is no AVX-512 variant (its eight-lane order-2 fits).
 
 namespace CGAL {
 namespace Wavejets {
@@ -1276,14 +1277,25 @@ constexpr bool avx512_dispatch = true;
 constexpr bool avx512_dispatch = false;
 #endif
 
-/// True if the processor runs solver_avx512() (AVX-512 F, VL and DQ, AVX2 and FMA; the same answer
-/// for the whole run); false where that variant is not compiled in.
+/// True if the dispatch may run solver_fma(): the processor has AVX2 and FMA, and the variant is
+/// compiled in (not CGAL_WAVEJETS_NO_FMA_DISPATCH). The same answer for the whole run.
+inline bool processor_runs_fma()
+{
+#if defined(CGAL_WAVEJETS_AVX_DISPATCH) && !defined(CGAL_WAVEJETS_NO_FMA_DISPATCH)
+  static const bool fma = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  return fma;
+#else
+  return false;
+#endif
+}
+
+/// True if the dispatch runs solver_avx512(): the processor has AVX-512 F, VL and DQ besides AVX2
+/// and FMA, and the variant is compiled in. The same answer for the whole run.
 inline bool processor_runs_avx512()
 {
 #ifdef CGAL_WAVEJETS_AVX512_DISPATCH
-  static const bool avx512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
-                             __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx2") &&
-                             __builtin_cpu_supports("fma");
+  static const bool avx512 = processor_runs_fma() && __builtin_cpu_supports("avx512f") &&
+                             __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512dq");
   return avx512;
 #else
   return false;
@@ -1295,7 +1307,7 @@ inline bool processor_runs_avx512()
 /// takes eight rows per step (Double8): its moments' partial sums differ, hence its solutions up to
 /// rounding; the other solvers keep their four-lane code, which the compiler gives twice as many
 /// registers (the same operations: bitwise the AVX2 + FMA variant's results, checked by
-/// test_simd_kernels), measured 3% (order 6) to 15% (order 4) faster on AMD Zen 5.
+/// test_simd_kernels; fewer spills, most in the QR of orders 3 and 4).
 template <Solver S, bool with_R = true>
 CGAL_WAVEJETS_TARGET("avx512f,avx512vl,avx512dq,avx2,fma")
 inline bool solver_avx512(double* A, std::size_t rows, std::size_t cols, double* v, double* c)
@@ -1316,14 +1328,9 @@ template <Solver S, bool with_R = true>
 inline bool dispatch_solver(double* A, std::size_t rows, std::size_t cols, double* v, double* c)
 {
 #ifdef CGAL_WAVEJETS_AVX_DISPATCH
-#ifndef CGAL_WAVEJETS_NO_FMA_DISPATCH
-  static const bool fma = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-#else
-  const bool fma = false;
-#endif
   if(processor_runs_avx512())
     return solver_avx512<S, with_R>(A, rows, cols, v, c);
-  if(fma)
+  if(processor_runs_fma())
     return solver_fma<S, with_R>(A, rows, cols, v, c);
   if(processor_runs_avx())
     return solver_avx<S, with_R>(A, rows, cols, v, c);
