@@ -1,5 +1,5 @@
 // Tests of the four point-set functions of the Wavejets package against analytic truth
-// (WAVEJETS_MATH.md §§5-8), against CGAL's jets, and for their CGAL-style contract
+// (doc/Wavejets/Mathematics.txt §§5-8), against CGAL's jets, and for their CGAL-style contract
 // (concurrency, input types, interruption, unfittable points, named parameters).
 //
 // Every check is an explicit `if` that accumulates failures (never `assert`); each group prints

@@ -567,7 +567,7 @@ static void class_coordinates_radii_and_orders(const Sample& patch)
               std::to_string(order) + ": relative change " + str(e) + " <= 1e-9");
       }
     }
-    // (b) generic coordinates (rounded when translated): bounded by WAVEJETS_MATH.md's ~100 ulp(offset)/Rf.
+    // (b) generic coordinates (rounded when translated): bounded by doc/Wavejets/Mathematics.txt's ~100 ulp(offset)/Rf.
     std::vector<Point> g = patch.points, gm;
     const Vector t(1e7, -1e7, 1e7);
     for(const Point& p : g) gm.push_back(p + t);

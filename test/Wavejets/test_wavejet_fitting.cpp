@@ -1,6 +1,6 @@
 // Tests of CGAL::Wavejet_fitting (the fitting core), against analytic truth, CGAL's
 // Monge_via_jet_fitting, invariances, stability of the tangent-plane correction, and the
-// adaptive order / failure states. See WAVEJETS_MATH.md for the conventions tested here.
+// adaptive order / failure states. See doc/Wavejets/Mathematics.txt for the conventions tested here.
 //
 // Every check is an explicit `if` (through wavejets_test::check): a failure is printed and
 // counted, and main() returns EXIT_FAILURE if any check failed; the argument runs one case or
@@ -676,7 +676,7 @@ void test_convergence()
   begin_section("2b. convergence rate of the curvature error, h, h/2, h/4, orders 2..5");
   // For a fit of order K on samples of a smooth surface over a disc of radius h, the first term
   // the fit cannot represent has degree K+1: it perturbs the fitted second derivatives, hence the
-  // curvatures, by O(h^{K-1}) (WAVEJETS_MATH.md section 2; the same argument as for jets).
+  // curvatures, by O(h^{K-1}) (doc/Wavejets/Mathematics.txt section 2; the same argument as for jets).
   // Measurement: per surface and order, 6 random unit-disc patterns, each scaled to h0, h0/2,
   // h0/4 (h0 = 0.2 x the smallest radius of curvature at the query); E(h) = RMS over the patterns
   // of max(|dH|, |dk1|, |dk2|) against the analytic truth; observed order between two sizes
@@ -879,7 +879,7 @@ void test_cgal_cross_check(const Kitten& kitten)
     //     so "not worse than CGAL" holds by construction. It is kept as a consistency check (equal
     //     to CGAL up to rounding), not as an accuracy claim about the correction.
     // (b) The corrected path, Curvature_frame::TANGENT_FRAME: curvature read from the fit in the
-    //     corrected tangent frame, a different least-squares problem. WAVEJETS_MATH.md section 4
+    //     corrected tangent frame, a different least-squares problem. doc/Wavejets/Mathematics.txt section 4
     //     reports it 5-20% worse (RMSE of H) than the PCA-frame fit on a quartic implicit surface.
     //     Asserted: RMS curvature error <= 1.2 x CGAL's (the spec's worst figure; measured here:
     //     printed "ratio", at most ~1.04), and the corrected path really differs from (a) on most
@@ -1021,7 +1021,7 @@ void test_invariances(const Kitten& kitten)
     };
 
     // translation by (1e6, -1e6, 1e6): coordinates lose ~ulp(1e6), i.e. ulp(1e6)/Rf relative to the
-    // neighborhood; allow 100 of them (WAVEJETS_MATH.md section 8).
+    // neighborhood; allow 100 of them (doc/Wavejets/Mathematics.txt section 8).
     {
       const Vector t(1e6, -1e6, 1e6);
       std::vector<Point> moved;
@@ -1078,7 +1078,7 @@ void test_invariances(const Kitten& kitten)
     }
     // phase: rotate the set by mu about the frame normal through the query. The new fit's axis u'
     // rotated back by -mu makes an angle nu with u (about n): 0, or pi if the PCA eigenvector
-    // changed sign; then f'_{k,n} = f_{k,n} e^{i n nu} (WAVEJETS_MATH.md section 1).
+    // changed sign; then f'_{k,n} = f_{k,n} e^{i n nu} (doc/Wavejets/Mathematics.txt section 1).
     {
       const Vector3d n = E(f.frame_normal_direction()), p0 = E(pts[0] - CGAL::ORIGIN);
       const Matrix3d Rm = Eigen::AngleAxisd(mu, n).toRotationMatrix();
@@ -1455,7 +1455,7 @@ void test_accessors(const Kitten& kitten)
       }
 
       // condition_number: the ratio of extreme singular values of the kept fit's rescaled system.
-      // Reference: the design matrix built here from the definition (WAVEJETS_MATH.md section 2),
+      // Reference: the design matrix built here from the definition (doc/Wavejets/Mathematics.txt section 2),
       // in the form's final frame, coordinates (q - p) / Rf, columns r^k, r^k cos n theta,
       // r^k sin n theta (n = k mod 2, n <= k), and its JacobiSVD.
       {

@@ -1,7 +1,7 @@
 // Copyright (c) 2026 The CGAL Wavejets project.
 // All rights reserved.
 //
-// This file is part of the Wavejets package (https://github.com/cgal-wavejets/wavejets).
+// This file is part of the CGAL Wavejets package.
 //
 // SPDX-License-Identifier: GPL-3.0-or-later
 //

@@ -1,7 +1,7 @@
 // Copyright (c) 2026 The CGAL Wavejets project.
 // All rights reserved.
 //
-// This file is part of the Wavejets package (https://github.com/cgal-wavejets/wavejets).
+// This file is part of the CGAL Wavejets package.
 //
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
@@ -15,7 +15,7 @@
 // bench_ponca_accuracy: their CMake target has test/Wavejets/support on its include path).
 // Header-only, depends on Eigen and the standard library only.
 //
-// Conventions (those of the package, WAVEJETS_MATH.md §3): normals point outward; curvature
+// Conventions (those of the package, doc/Wavejets/Mathematics.txt §3): normals point outward; curvature
 // signs are relative to that normal, a surface bending toward the normal is positive, so a
 // sphere of radius R has H = -1/R, K_G = 1/R^2, k1 = k2 = -1/R; k1 >= k2.
 // Every surface lies in [-1, 1]^3 with its largest half-extent equal to 1.

@@ -1,7 +1,7 @@
 // Copyright (c) 2026 The CGAL Wavejets project.
 // All rights reserved.
 //
-// This file is part of the Wavejets package (https://github.com/cgal-wavejets/wavejets).
+// This file is part of the CGAL Wavejets package.
 //
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
@@ -11,7 +11,7 @@
 #define CGAL_WAVEJETS_INTERNAL_DIFFERENTIAL_QUANTITIES_H
 
 // Curvatures and principal directions of a height field z = f(x, y) over a frame (u, v, n),
-// from its derivatives at the origin (exact graph formulas, valid in any frame; WAVEJETS_MATH.md §3).
+// from its derivatives at the origin (exact graph formulas, valid in any frame; doc/Wavejets/Mathematics.txt §3).
 
 #include <Eigen/Core>
 

@@ -1,7 +1,7 @@
 // Copyright (c) 2026 The CGAL Wavejets project.
 // All rights reserved.
 //
-// This file is part of the Wavejets package (https://github.com/cgal-wavejets/wavejets).
+// This file is part of the CGAL Wavejets package.
 //
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
@@ -10,7 +10,7 @@
 #ifndef CGAL_WAVEJETS_INTERNAL_FITTING_CORE_H
 #define CGAL_WAVEJETS_INTERNAL_FITTING_CORE_H
 
-// The one Wavejet fitting core (WAVEJETS_MATH.md §2), shared by Wavejet_fitting and every
+// The one Wavejet fitting core (doc/Wavejets/Mathematics.txt §2), shared by Wavejet_fitting and every
 // point-set function. It works on neighbor offsets q_l - p in double precision, owns its
 // scratch (grown, never shrunk: no heap allocation per point once warm) and is used by one
 // thread at a time.
@@ -333,7 +333,7 @@ private:
     std::size_t corrections = 0;
   };
 
-  // Tangent-plane correction (WAVEJETS_MATH.md §2.5) from the fit first_ of order `order` in
+  // Tangent-plane correction (doc/Wavejets/Mathematics.txt §2.5) from the fit first_ of order `order` in
   // `frame`: re-fit in the plane orthogonal to the fitted normal, at most
   // options.correction_iterations times, keep the fit with the smallest |f_{1,1}| (into best_),
   // stop as soon as a re-fit does not lower it. A corrected frame whose normal would point away

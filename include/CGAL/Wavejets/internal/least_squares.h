@@ -1,7 +1,7 @@
 // Copyright (c) 2026 The CGAL Wavejets project.
 // All rights reserved.
 //
-// This file is part of the Wavejets package (https://github.com/cgal-wavejets/wavejets).
+// This file is part of the CGAL Wavejets package.
 //
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
@@ -11,7 +11,7 @@
 #define CGAL_WAVEJETS_INTERNAL_LEAST_SQUARES_H
 
 // Dense least squares min ||A c - b||, in place on caller-owned scratch, without heap allocation:
-// least_squares() solves by the corrected semi-normal equations (WAVEJETS_MATH.md section 2, step 3),
+// least_squares() solves by the corrected semi-normal equations (doc/Wavejets/Mathematics.txt section 2, step 3),
 // guarded, and hands the systems too ill-conditioned for them to the Householder QR
 // (householder_least_squares()). Plain normal equations are not used: the Wavejet systems are too
 // ill-conditioned for them. wavejet_least_squares() is the same solver for a system whose columns
@@ -873,7 +873,7 @@ CGAL_WAVEJETS_KERNEL_INLINE bool semi_normal_refine(const double* R, const doubl
   return largest_dx <= semi_normal_correction_guard * largest_x && std::isfinite(largest_x);
 }
 
-/// Corrected semi-normal equations (WAVEJETS_MATH.md section 2, step 3; Bjorck): the Cholesky
+/// Corrected semi-normal equations (doc/Wavejets/Mathematics.txt section 2, step 3; Bjorck): the Cholesky
 /// factor of the column-scaled Gram matrix D M^T M D (D = diag(1 / |column of M|), factored as
 /// U^T E U without square roots by semi_normal_factor_and_solve()), x from it and
 /// M^T b, then one step of iterative refinement with M itself (r = b - M x, solve for dx with the

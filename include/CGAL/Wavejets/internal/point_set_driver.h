@@ -1,7 +1,7 @@
 // Copyright (c) 2026 The CGAL Wavejets project.
 // All rights reserved.
 //
-// This file is part of the Wavejets package (https://github.com/cgal-wavejets/wavejets).
+// This file is part of the CGAL Wavejets package.
 //
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
@@ -278,7 +278,7 @@ struct Point_set_input
 /// What a kernel sees of one fitted point.
 /// The fit works in coordinates divided by the neighborhood radius Rf ("rescaled units"): the
 /// coefficients are in those units, and the two conversions below are the only unit arithmetic the
-/// functions' kernels do (the filters' formulas are written in rescaled units, WAVEJETS_MATH.md).
+/// functions' kernels do (the filters' formulas are written in rescaled units, doc/Wavejets/Mathematics.txt).
 struct Fitted_point
 {
   std::size_t index;
