@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The main job on bundled data: installs what is missing, builds the `wavejets` command-line tool
 # in Release, then runs it
-# - on the Stanford bunny mesh (benchmark/Wavejets/data/bunny00.off, 37,706 vertices): positions
+# - on the Stanford bunny mesh (examples/Wavejets/data/bunny00.off, 37,706 vertices): positions
 #   enhanced with gain 2 at the tool's defaults (the README's picture); the paper's Figure 5,
 #   positions and normals enhanced with gain 2 at order 6 and Rf = 3% of the bounding-box diagonal;
 #   mesh in, mesh out (PLY with the input's faces);
@@ -24,7 +24,7 @@ wavejets="$build/demo/Wavejets/wavejets"
 data="$root/examples/Wavejets/data/kitten.xyz"
 run() { echo "\$ wavejets $*"; "$wavejets" "$@"; echo; }
 
-bunny="$root/benchmark/Wavejets/data/bunny00.off"
+bunny="$root/examples/Wavejets/data/bunny00.off"
 echo "== The bunny mesh, positions enhanced with gain 2 at the defaults (order 4, 40 nearest neighbors)"
 run enhance-positions "$bunny" "$out/bunny_enhanced_positions_defaults.ply" --gain 2
 run render --compare "$bunny" "$out/bunny_enhanced_positions_defaults.ply" "$out/bunny_enhanced_positions_defaults.png" --view 0,0.2,1 --width 840 --height 420

@@ -13,8 +13,8 @@ build="$(cd "$1" && pwd)"
 out="$(realpath -m "$2")"
 work=/tmp/wavejets_result_checksums   # a fixed folder: the PLY comments name the input path
 rm -rf "$work" && mkdir -p "$work"
-cp "$root/test/Wavejets/data/kitten.xyz" "$work/kitten.xyz"
-python3 "$root/scripts/sample_mesh.py" "$root/benchmark/Wavejets/data/bunny00.off" 100000 12345 "$work/bunny100k.xyz"
+cp "$root/examples/Wavejets/data/kitten.xyz" "$work/kitten.xyz"
+python3 "$root/scripts/sample_mesh.py" "$root/examples/Wavejets/data/bunny00.off" 100000 12345 "$work/bunny100k.xyz"
 tool="$build/demo/Wavejets/wavejets"
 cd "$work"
 for n in kitten bunny100k; do

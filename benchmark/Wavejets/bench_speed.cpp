@@ -1,6 +1,6 @@
 // Speed benchmark of the Wavejets point-set functions against CGAL's jet fitting.
 //
-// Samples N points uniformly on benchmark/Wavejets/data/bunny00.off (fixed seed) and times, in one
+// Samples N points uniformly on examples/Wavejets/data/bunny00.off (fixed seed) and times, in one
 // process, with CGAL::Real_timer:
 //   * the k-NN search alone (the package's internal Neighbor_query: tree build + N queries), the
 //     floor of any neighborhood method;
