@@ -4,7 +4,8 @@
 # libjs-mathjax typesets its formulas offline (its files are copied into the built manual);
 # clang is the compiler of the CGAL 6.1.1 leg of scripts/test.sh; xz-utils unpacks that release.
 set -euo pipefail
-packages="g++ clang cmake make xz-utils libcgal-dev libeigen3-dev libtbb-dev libboost-dev libpng-dev doxygen libjs-mathjax"
+packages="g++ clang cmake make xz-utils libcgal-dev libeigen3-dev libtbb-dev libboost-dev libpng-dev doxygen
+  libjs-mathjax"
 missing=""
 for p in $packages; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"

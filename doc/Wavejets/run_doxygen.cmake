@@ -64,7 +64,8 @@ if(WAVEJETS_MATHJAX_DIR)
   file(COPY "${WAVEJETS_MATHJAX_DIR}/jax/element" DESTINATION "${mathjax_dir}/jax")
   file(COPY "${WAVEJETS_MATHJAX_DIR}/jax/output/HTML-CSS" DESTINATION "${mathjax_dir}/jax/output"
        PATTERN "fonts" EXCLUDE)
-  file(COPY "${WAVEJETS_MATHJAX_DIR}/jax/output/HTML-CSS/fonts/TeX" DESTINATION "${mathjax_dir}/jax/output/HTML-CSS/fonts")
+  file(COPY "${WAVEJETS_MATHJAX_DIR}/jax/output/HTML-CSS/fonts/TeX"
+       DESTINATION "${mathjax_dir}/jax/output/HTML-CSS/fonts")
   file(COPY "${WAVEJETS_MATHJAX_DIR}/fonts/HTML-CSS/TeX/woff" "${WAVEJETS_MATHJAX_DIR}/fonts/HTML-CSS/TeX/otf"
        DESTINATION "${mathjax_dir}/fonts/HTML-CSS/TeX")
   if(EXISTS "${WAVEJETS_MATHJAX_DIR}/localization/en")
