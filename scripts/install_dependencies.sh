@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # Installs the Debian packages the package builds on, if any is missing (run as root).
-# doxygen builds the documentation and runs its test (wavejets_documentation: no warning allowed);
+# doxygen builds the documentation and runs its test (wavejets_documentation: no warning allowed), and
+# libjs-mathjax typesets its formulas offline (its files are copied into the built manual);
 # clang is the compiler of the CGAL 6.1.1 leg of scripts/test.sh; xz-utils unpacks that release.
 set -euo pipefail
-packages="g++ clang cmake make xz-utils libcgal-dev libeigen3-dev libtbb-dev libboost-dev libpng-dev doxygen"
+packages="g++ clang cmake make xz-utils libcgal-dev libeigen3-dev libtbb-dev libboost-dev libpng-dev doxygen
+  libjs-mathjax"
 missing=""
 for p in $packages; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
