@@ -1,25 +1,40 @@
 #!/usr/bin/env bash
 # The README's test command (and CI's, through .ci/run): installs what is missing, then builds and
 # runs the whole CTest suite (tests, examples, the CLI tool's tests, the documentation, the header
-# and install checks) on a build matrix, and prints the time of each leg and the total:
+# and install checks) and prints the time of each leg and the total.
+#
+# By default, one leg: g++ + Debian's CGAL 5.5, Release, benchmarks built too (the inner loop of a
+# change). With CI=true (as CI sets it) or WAVEJETS_FULL_MATRIX=1, the whole build matrix:
 #   1. g++     + CGAL 5.5 (Debian)  Release, benchmarks built too
 #   2. clang++ + CGAL 6.1.1         Release, benchmarks built too; its results of every public
 #      function are compared with leg 1's to 1e-12 relative (test_public_api_results); the
 #      libFuzzer target (not a test) is built in leg 3 only
-#   3. clang++ + CGAL 5.5 (Debian)  AddressSanitizer + UndefinedBehaviorSanitizer, Debug at -O1 (clang++
-#      compiles these CGAL-heavy sanitized translation units about 3x faster than g++: 124 s against
-#      421 s for test_point_set_functions.cpp); without the two compile-only tests of the headers and
-#      the installation, which legs 1 and 2 run
+#   3. clang++ + CGAL 5.5 (Debian)  AddressSanitizer + UndefinedBehaviorSanitizer, Debug at -O1
+#      (clang++ compiles these CGAL-heavy sanitized translation units about 3x faster than g++);
+#      without the two compile-only tests of the headers and the installation, which legs 1 and 2 run
 # Leg 2 needs the unmodified CGAL 6.1.1 release: an unpacked folder named by WAVEJETS_CGAL6_DIR, or
 # the tarball named by WAVEJETS_CGAL6_TARBALL, or ../shared/deps/CGAL-6.1.1.tar.xz beside the
-# clone (unpacked into build/deps). Without it, leg 2 is skipped with a banner, except under CI=true
-# where it is an error. WAVEJETS_SKIP_SANITIZERS=1 skips leg 3.
+# clone (a build fallback of this project's own CI; unpacked into build/deps). Without it, leg 2 is
+# skipped with a banner, except under CI=true where it is an error. WAVEJETS_SKIP_SANITIZERS=1
+# skips leg 3.
+# Where ccache is installed, every leg compiles through it (a re-run after a small change then
+# recompiles only what the change touches); WAVEJETS_NO_CCACHE=1 turns that off.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 cd "$root"
 start=$(date +%s)
 bash scripts/install_dependencies.sh
 summary=""
+full_matrix=0
+if [ "${CI:-}" = true ] || [ "${WAVEJETS_FULL_MATRIX:-0}" = 1 ]; then full_matrix=1; fi
+launcher=()
+if [ "${WAVEJETS_NO_CCACHE:-0}" != 1 ] && command -v ccache > /dev/null; then
+  launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+  # The tests and benchmarks use precompiled headers: ccache caches their compilations only with
+  # these sloppiness settings (its manual, "Precompiled headers").
+  export CCACHE_SLOPPINESS="${CCACHE_SLOPPINESS:-pch_defines,time_macros,include_file_mtime,include_file_ctime}"
+  echo "ccache: $(command -v ccache) (WAVEJETS_NO_CCACHE=1 compiles without it)"
+fi
 
 # run_leg NAME BUILD_DIR [cmake arguments...]: configure, build with 2 jobs, run CTest with 2 jobs
 # (without the tests matching $ctest_exclude, when set). The tests write only into their own build
@@ -33,7 +48,7 @@ run_leg() {
   leg_start=$(date +%s)
   echo
   echo "=================== $name ==================="
-  cmake -S . -B "$build" -DBUILD_TESTING=ON -DWAVEJETS_REQUIRE_TBB=ON "$@"
+  cmake -S . -B "$build" -DBUILD_TESTING=ON -DWAVEJETS_REQUIRE_TBB=ON ${launcher[@]+"${launcher[@]}"} "$@"
   cmake --build "$build" -j2
   (cd "$build" && ctest --output-on-failure -j2 ${ctest_exclude:+-E "$ctest_exclude"})
   summary="$summary$(printf '%-55s %4d s' "$name" $(($(date +%s) - leg_start)))"$'\n'
@@ -61,7 +76,11 @@ gcc_build=${WAVEJETS_TEST_BUILD_DIR:-build/test}
 run_leg "1. g++ + CGAL $(dpkg-query -W -f='${Version}' libcgal-dev 2>/dev/null | cut -d- -f1), Release" "$gcc_build" \
   -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=g++ -DWAVEJETS_BUILD_BENCHMARKS=ON
 
-if cgal6=$(find_cgal6); then
+if [ $full_matrix = 0 ]; then
+  echo
+  echo "One leg run (the full matrix: CI=true or WAVEJETS_FULL_MATRIX=1)."
+  summary="${summary}2. and 3. (clang++ + CGAL 6.1.1; sanitizers)            not run (one-leg run)"$'\n'
+elif cgal6=$(find_cgal6); then
   run_leg "2. clang++ + CGAL $(cat "$cgal6/VERSION" 2>/dev/null || echo 6.1.1), Release" "${WAVEJETS_CLANG_BUILD_DIR:-build/clang-cgal6}" \
     -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=clang++ -DCGAL_DIR="$cgal6" -DWAVEJETS_BUILD_BENCHMARKS=ON \
     -DWAVEJETS_BUILD_LIBFUZZER=OFF \
@@ -76,7 +95,9 @@ else
   summary="${summary}2. clang++ + CGAL 6.1.1                                 SKIPPED (release not at hand)"$'\n'
 fi
 
-if [ "${WAVEJETS_SKIP_SANITIZERS:-0}" != 1 ]; then
+if [ $full_matrix = 0 ]; then
+  :
+elif [ "${WAVEJETS_SKIP_SANITIZERS:-0}" != 1 ]; then
   # Every UBSan finding and every leak is fatal, except the findings in third-party headers listed
   # (with the reason) in scripts/ubsan_suppressions.txt: UBSan checks are built recoverable so that
   # a suppression can skip a report, and halt_on_error=1 stops the run at any other one. Benchmarks
@@ -97,6 +118,6 @@ else
 fi
 
 echo
-echo "=================== build matrix: all legs passed ==================="
+echo "=================== all legs run passed ==================="
 printf '%s' "$summary"
 echo "total (with the installation check): $(($(date +%s) - start)) s"
