@@ -471,10 +471,9 @@ private:
     const std::size_t B = number_of_coefficients(order);
     const std::size_t P = padded_rows(L);
     const bool keep_system = robust_iterations > 0;
-#ifndef CGAL_WAVEJETS_NO_SEMI_NORMAL
     // Order 2 without IRLS nor condition number: the system is solved from its moments, not built
-    // (order2_least_squares()); if its guards refuse it, it is built and solved below.
-    if(order == 2 && !keep_system && !want_condition_)
+    // (solver_choice.h, order2_least_squares()); if its guards refuse it, it is built and solved below.
+    if(order2_from_moments(order, L, keep_system, want_condition_))
     {
       coordinates_.resize(3 * P);
       double* X = coordinates_.data();
@@ -484,7 +483,6 @@ private:
          std::all_of(c.begin(), c.end(), [](double v) { return std::isfinite(v); }))
         return true;
     }
-#endif
     Aligned_vector& system = keep_system ? system_ : work_;
     system.resize(P * (B + 1));
     double* A = system.data();

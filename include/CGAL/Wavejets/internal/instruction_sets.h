@@ -15,15 +15,15 @@
 // wrappers with the target attribute: for AVX without FMA (the arithmetic, hence the result, is
 // bitwise the same as the baseline SSE2 code: every operation is one correctly rounded IEEE
 // operation, and the compiler may not fuse without FMA) and, for the least-squares solver, for
-// AVX2 with FMA and for AVX-512 (least_squares.h). The best variant the processor supports is
+// AVX2 with FMA and for AVX-512 (solver_dispatch.h). The best variant the processor supports is
 // picked at run time, the same for every call: results never depend on the thread or on the
 // ConcurrencyTag. Code compiled with FMA enabled for the whole translation unit (-mfma,
 // -march=native, ...) has no dispatch: the kernels are compiled once, for those flags. The user's
 // opt-out macros (documented in the manual's installation section; define them before including
 // any header of the package):
 //   CGAL_WAVEJETS_NO_AVX_DISPATCH        baseline code only (no run-time dispatch);
-//   CGAL_WAVEJETS_NO_FMA_DISPATCH        the solver keeps only the AVX variant (least_squares.h);
-//   CGAL_WAVEJETS_NO_AVX512_DISPATCH     the solver has no AVX-512 variant (least_squares.h).
+//   CGAL_WAVEJETS_NO_FMA_DISPATCH        the solver keeps only the AVX variant (solver_dispatch.h);
+//   CGAL_WAVEJETS_NO_AVX512_DISPATCH     the solver has no AVX-512 variant (solver_dispatch.h).
 // Macros defined here: CGAL_WAVEJETS_AVX_DISPATCH (defined when the dispatch is compiled in),
 // CGAL_WAVEJETS_KERNEL_INLINE (the kernels' inline specifier) and CGAL_WAVEJETS_TARGET(sets),
 // CGAL_WAVEJETS_UNROLL and CGAL_WAVEJETS_NOINLINE.
