@@ -103,8 +103,8 @@ struct Moments_kernel
 /// Eigen-decomposition of the symmetric 3 x 3 matrix `A` (the PCA's covariance): eigenvalues in
 /// ascending order, the eigenvectors in the matching columns. Eigen's closed form
 /// (SelfAdjointEigenSolver::computeDirect, cheaper than the iterative QR) is kept when it is as
-/// accurate as the iterative solver, which is backward stable: its columns orthonormal and each residual |A v_i - lambda_i v_i| within
-/// pca_direct_residual_bound eps |A|_F. Then every eigenvalue is within that of one of A's, and
+/// accurate as the iterative solver, which is backward stable: its columns orthonormal and each
+/// residual |A v_i - lambda_i v_i| within pca_direct_residual_bound eps |A|_F. Then every eigenvalue is within that of one of A's, and
 /// each eigenvector within that over its eigenvalue's gap (the bounds of the iterative solver,
 /// up to the constant). Otherwise (close eigenvalues, on which the closed form loses digits) the
 /// iterative solver's result. Returns false if neither succeeds.
