@@ -51,6 +51,7 @@
 #include <iostream>
 #include <memory>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <utility>
@@ -359,13 +360,19 @@ static double fastest_of_three(Run run)
   return best;
 }
 
-/// The fit settings of the point-set function `f` with its defaults and order `order`, as its driver
-/// reads them (WI::read_settings()).
+/// The fit settings of the point-set function `f` (of those timed here: wavejet_estimate_normals or
+/// wavejet_enhance_positions) with its defaults and order `order`, as the function reads them (the
+/// settings readers in its header).
 static CGAL::Wavejets::Fitting_options function_fitting(const Points& points, std::size_t order, unsigned int k,
                                                        CGAL::Wavejets::Point_set_function f)
 {
   Points copy(points.begin(), points.begin() + (std::min<std::size_t>)(points.size(), 1));
-  return WI::read_settings(copy, k, WP::order(order, np_maps()), f).fitting;
+  const auto np = WP::order(order, np_maps());
+  if(f == CGAL::Wavejets::Point_set_function::ENHANCE_POSITIONS)
+    return WI::enhance_positions_settings(copy, k, np).driver.fitting;
+  if(f != CGAL::Wavejets::Point_set_function::ESTIMATE_NORMALS)
+    throw std::logic_error("function_fitting: only the functions timed here");
+  return WI::estimate_normals_settings(copy, k, np).fitting;
 }
 
 /// The fitting core alone: Fitter::fit on m neighborhoods of the k-NN (the center and its k

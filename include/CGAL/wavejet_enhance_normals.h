@@ -17,6 +17,29 @@
 #include <complex>
 
 namespace CGAL {
+namespace Wavejets {
+namespace internal {
+
+/// The settings of `wavejet_enhance_normals()`: the driver's and the filter's own.
+struct Enhance_normals_settings
+{
+  Driver_settings driver;
+  double evaluation_radius = 0.; // s of a_{-1}(s), world units; 0: Rf of each point
+};
+
+/// Reads and checks the named parameters of `wavejet_enhance_normals()`.
+template <class PointRange, class NP>
+Enhance_normals_settings enhance_normals_settings(PointRange& points, unsigned int k, const NP& np)
+{
+  Enhance_normals_settings s;
+  s.driver = read_settings(points, k, np, function_defaults(Point_set_function::ENHANCE_NORMALS));
+  require_normal_map(points, np, s.driver.function);
+  s.evaluation_radius = read_evaluation_radius(np, s.driver.function);
+  return s;
+}
+
+} // namespace internal
+} // namespace Wavejets
 
 /*!
 \ingroup PkgWavejetsRef
@@ -76,14 +99,14 @@ Wavejets::Processing_report wavejet_enhance_normals(PointRange& points, unsigned
   using namespace Wavejets::internal;
   typedef Point_set_input<PointRange, NamedParameters> Input;
   static_assert(may_have_normal_map<PointRange, NamedParameters>(), "Error: no normal map");
-  const Driver_settings settings = read_settings(points, k, np, Wavejets::Point_set_function::ENHANCE_NORMALS);
-  require(std::isfinite(gain.real()) && std::isfinite(gain.imag()) && std::abs(gain) <= 1e100, settings.function,
-          "the gain must be finite, |gain| <= 1e100");
-  const Input input(points, np, settings.read_input_normals);
+  const Enhance_normals_settings settings = enhance_normals_settings(points, k, np);
+  require(std::isfinite(gain.real()) && std::isfinite(gain.imag()) && std::abs(gain) <= 1e100,
+          settings.driver.function, "the gain must be finite, |gain| <= 1e100");
+  const Input input(points, np, settings.driver.read_input_normals);
 
   const double pi = 3.14159265358979323846;
   std::vector<Eigen::Vector3d> normals(input.size());
-  const Driver_run run = fit_each_point<ConcurrencyTag>(input, settings,
+  const Driver_run run = fit_each_point<ConcurrencyTag>(input, settings.driver,
     [&](const Fitted_point& fp) {
       const double sigma = fp.evaluation_radius_in_radii(settings.evaluation_radius);
       const std::complex<double> a = enclosed_area(fp.coefficients, fp.fit.order, -1, sigma, 3); // rescaled

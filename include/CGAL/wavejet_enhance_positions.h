@@ -21,6 +21,43 @@ namespace CGAL {
 namespace Wavejets {
 namespace internal {
 
+/// The settings of `wavejet_enhance_positions()`: the driver's and the filter's own.
+struct Enhance_positions_settings
+{
+  Driver_settings driver;
+  double evaluation_radius = 0.;           // s of a_0(s), world units; 0: Rf of each point
+  double maximum_displacement = 0.;        // clamp, world units; 0: maximum_displacement_in_radii * Rf
+  double maximum_displacement_in_radii = 0.;
+  bool write_normals = false;              // also write the Wavejet normals
+  bool move_along_input_normals = false;   // move along the input normals
+};
+
+/// Reads and checks the named parameters of `wavejet_enhance_positions()`.
+template <class PointRange, class NP>
+Enhance_positions_settings enhance_positions_settings(PointRange& points, unsigned int k, const NP& np)
+{
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  namespace wnp = Wavejets::internal_np;
+  const Function_defaults d = function_defaults(Point_set_function::ENHANCE_POSITIONS);
+  const char* fn = d.name;
+  Enhance_positions_settings s;
+  s.driver = read_settings(points, k, np, d);
+  s.write_normals = choose_parameter(get_parameter(np, wnp::write_normals), false);
+  s.move_along_input_normals = choose_parameter(get_parameter(np, wnp::move_along_input_normals), false);
+  const bool has_normals = has_normal_map(points, np);
+  require(!s.write_normals || has_normals, fn, "write_normals needs a normal map");
+  require(!s.move_along_input_normals || has_normals, fn, "move_along_input_normals needs a normal map");
+  s.evaluation_radius = read_evaluation_radius(np, fn);
+  s.maximum_displacement_in_radii = d.maximum_displacement_in_radii;
+  if constexpr(!CGAL::parameters::is_default_parameter<NP, wnp::maximum_displacement_t>::value)
+  {
+    s.maximum_displacement = to_double(get_parameter(np, wnp::maximum_displacement));
+    require(s.maximum_displacement > 0, fn, "maximum_displacement must be > 0 (infinity switches the clamp off)");
+  }
+  return s;
+}
+
 /// Direction along which the position filter moves a fitted point: its Wavejet normal (the final
 /// frame's n), or with `along_input` its normalized input normal turned to the side of n (so that the
 /// height d, measured along n, keeps its meaning whatever the input orientation). A zero or
@@ -118,15 +155,16 @@ Wavejets::Processing_report wavejet_enhance_positions(PointRange& points, unsign
 {
   using namespace Wavejets::internal;
   typedef Point_set_input<PointRange, NamedParameters> Input;
-  const Driver_settings settings = read_settings(points, k, np, Wavejets::Point_set_function::ENHANCE_POSITIONS);
-  require(std::isfinite(gain) && std::abs(gain) <= 1e100, settings.function, "the gain must be finite, |gain| <= 1e100");
-  const Input input(points, np, settings.read_input_normals);
+  const Enhance_positions_settings settings = enhance_positions_settings(points, k, np);
+  require(std::isfinite(gain) && std::abs(gain) <= 1e100, settings.driver.function,
+          "the gain must be finite, |gain| <= 1e100");
+  const Input input(points, np, settings.driver.read_input_normals);
 
   const double two_pi = 2. * 3.14159265358979323846;
   std::vector<Eigen::Vector3d> motion(input.size(), Eigen::Vector3d::Zero()), normals;
   if(settings.write_normals) normals.resize(input.size());
   std::vector<unsigned char> clamped(input.size(), 0);
-  const Driver_run run = fit_each_point<ConcurrencyTag>(input, settings,
+  const Driver_run run = fit_each_point<ConcurrencyTag>(input, settings.driver,
     [&](const Fitted_point& fp) {
       const double sigma = fp.evaluation_radius_in_radii(settings.evaluation_radius);
       const double a0 = enclosed_area(fp.coefficients, fp.fit.order, 0, sigma, 2).real(); // rescaled units

@@ -15,6 +15,33 @@
 #include <CGAL/disable_warnings.h>
 
 namespace CGAL {
+namespace Wavejets {
+namespace internal {
+
+/// The settings of `wavejet_estimate_curvatures()`: the driver's, with the function's own rules
+/// (at least one output map; `degree_monge(2)` accepted).
+template <class PointRange, class NP>
+Driver_settings estimate_curvatures_settings(PointRange& points, unsigned int k, const NP& np)
+{
+  using CGAL::parameters::is_default_parameter;
+  namespace wnp = Wavejets::internal_np;
+  const Function_defaults d = function_defaults(Point_set_function::ESTIMATE_CURVATURES);
+  const bool any_output = !is_default_parameter<NP, wnp::mean_curvature_map_t>::value ||
+                          !is_default_parameter<NP, wnp::gaussian_curvature_map_t>::value ||
+                          !is_default_parameter<NP, wnp::maximal_principal_curvature_map_t>::value ||
+                          !is_default_parameter<NP, wnp::minimal_principal_curvature_map_t>::value ||
+                          !is_default_parameter<NP, wnp::maximal_principal_direction_map_t>::value ||
+                          !is_default_parameter<NP, wnp::minimal_principal_direction_map_t>::value;
+  require(any_output, d.name, "no output map given (e.g. Wavejets::parameters::mean_curvature_map(m))");
+  Driver_settings s = read_settings(points, k, np, d, true);
+  // Curvatures read from the first fit (the default) do not use the corrected frame: no re-fits.
+  if(s.fitting.curvature_frame == Curvature_frame::INITIAL_FRAME)
+    s.fitting.correction_iterations = 0;
+  return s;
+}
+
+} // namespace internal
+} // namespace Wavejets
 
 /*!
 \ingroup PkgWavejetsRef
@@ -100,21 +127,10 @@ Wavejets::Processing_report wavejet_estimate_curvatures(PointRange& points, unsi
 {
   using namespace Wavejets::internal;
   using parameters::get_parameter;
-  using parameters::is_default_parameter;
   namespace wnp = Wavejets::internal_np;
   typedef Point_set_input<PointRange, NamedParameters> Input;
   typedef typename Input::Geom_traits::FT FT;
-  const Wavejets::Point_set_function f = Wavejets::Point_set_function::ESTIMATE_CURVATURES;
-
-  const bool any_output = !is_default_parameter<NamedParameters, wnp::mean_curvature_map_t>::value ||
-                          !is_default_parameter<NamedParameters, wnp::gaussian_curvature_map_t>::value ||
-                          !is_default_parameter<NamedParameters, wnp::maximal_principal_curvature_map_t>::value ||
-                          !is_default_parameter<NamedParameters, wnp::minimal_principal_curvature_map_t>::value ||
-                          !is_default_parameter<NamedParameters, wnp::maximal_principal_direction_map_t>::value ||
-                          !is_default_parameter<NamedParameters, wnp::minimal_principal_direction_map_t>::value;
-  require(any_output, Wavejets::function_defaults(f).name,
-          "no output map given (e.g. Wavejets::parameters::mean_curvature_map(m))");
-  const Driver_settings settings = read_settings(points, k, np, f);
+  const Driver_settings settings = estimate_curvatures_settings(points, k, np);
   const Input input(points, np, settings.read_input_normals);
 
   std::vector<Curvature_info> curvatures(input.size());

@@ -15,6 +15,23 @@
 #include <CGAL/disable_warnings.h>
 
 namespace CGAL {
+namespace Wavejets {
+namespace internal {
+
+/// The settings of `wavejet_estimate_normals()`: the driver's, with the function's own rules.
+template <class PointRange, class NP>
+Driver_settings estimate_normals_settings(PointRange& points, unsigned int k, const NP& np)
+{
+  Driver_settings s = read_settings(points, k, np, function_defaults(Point_set_function::ESTIMATE_NORMALS));
+  require_normal_map(points, np, s.function);
+  // The normal estimation reads no curvature: no full-order fit in the initial frame (it only serves
+  // INITIAL_FRAME curvatures).
+  s.fitting.curvature_frame = Curvature_frame::TANGENT_FRAME;
+  return s;
+}
+
+} // namespace internal
+} // namespace Wavejets
 
 /*!
 \ingroup PkgWavejetsRef
@@ -177,7 +194,7 @@ Wavejets::Processing_report wavejet_estimate_normals(PointRange& points, unsigne
   static_assert(may_have_normal_map<PointRange, NamedParameters>(), "Error: no normal map");
   // Only the normal is written, and it is the full-order surface's: by default the tangent plane is
   // found with order-2 fits (one full-order solve per point instead of three; see function_defaults()).
-  const Driver_settings settings = read_settings(points, k, np, Wavejets::Point_set_function::ESTIMATE_NORMALS);
+  const Driver_settings settings = estimate_normals_settings(points, k, np);
   const Input input(points, np, settings.read_input_normals);
 
   std::vector<Eigen::Vector3d> normals(input.size());

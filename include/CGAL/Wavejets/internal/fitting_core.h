@@ -18,6 +18,7 @@
 #include <CGAL/Wavejets/Fitting_options.h>
 #include <CGAL/Wavejets/internal/basis.h>
 #include <CGAL/Wavejets/internal/differential_quantities.h>
+#include <CGAL/Wavejets/internal/frame_kernels.h>
 #include <CGAL/Wavejets/internal/least_squares.h>
 
 #include <Eigen/Core>
@@ -50,114 +51,6 @@ inline Eigen::Vector3d graph_normal(const Frame& frame, double fx, double fy)
   return (frame.n - fx * frame.u - fy * frame.v).normalized();
 }
 
-/// The coordinates along three axes of L points stored coordinate by coordinate (x, y, z columns
-/// of stride padded_rows(L) from `coordinates`, zero padding rows): column i of the output (x, y,
-/// h) is the dot product with axes[3i..3i+2], zero on the rows L..P-1. Four rows at a time, all
-/// three outputs in one pass (dispatch_avx(): bitwise the same values in AVX and SSE2).
-struct Projection_kernel
-{
-  static CGAL_WAVEJETS_KERNEL_INLINE void run(const double* coordinates, std::size_t L, std::size_t P,
-                                              const double* axes, double* x, double* y, double* h)
-  {
-    const std::size_t stride = padded_rows(L);
-    const double* sx = coordinates;
-    const double* sy = sx + stride;
-    const double* sz = sy + stride;
-    double* out[3] = {x, y, h};
-    const Double4 zero = {0., 0., 0., 0.};
-    Double4 axis[3][3];
-    for(int i = 0; i < 3; ++i)
-      for(int j = 0; j < 3; ++j) axis[i][j] = zero + axes[3 * i + j];
-    std::size_t l = 0;
-    for(; l + 4 <= L; l += 4)
-    {
-      Double4 a, b, c;
-      load4(a, sx + l);
-      load4(b, sy + l);
-      load4(c, sz + l);
-      for(int i = 0; i < 3; ++i)
-      {
-        Double4 p = a * axis[i][0]; // (a u0 + b u1) + c u2, as in the scalar tail below
-        p += b * axis[i][1];
-        p += c * axis[i][2];
-        store4(out[i] + l, p);
-      }
-    }
-    for(; l < L; ++l)
-      for(int i = 0; i < 3; ++i) out[i][l] = sx[l] * axes[3 * i] + sy[l] * axes[3 * i + 1] + sz[l] * axes[3 * i + 2];
-    for(; l < P; ++l)
-      for(int i = 0; i < 3; ++i) out[i][l] = 0.;
-  }
-};
-
-/// First and second moments of L points stored as in Projection_kernel: sums[0..2] = sum x, y, z
-/// and sums[3..8] = sum xx, xy, xz, yy, yz, zz, each with one partial sum per row residue mod 4
-/// (reduce4()), in one pass (dispatch_avx(): bitwise the same sums in AVX and SSE2).
-struct Moments_kernel
-{
-  static CGAL_WAVEJETS_KERNEL_INLINE void run(const double* coordinates, std::size_t L, double* sums)
-  {
-    const std::size_t P = padded_rows(L);
-    const double* coordinate[3] = {coordinates, coordinates + P, coordinates + 2 * P};
-    const Double4 zero = {0., 0., 0., 0.};
-    // One named accumulator per sum (arrays of them were kept in memory by g++: a store and a
-    // reload per update).
-    Double4 sx = zero, sy = zero, sz = zero, sxx = zero, sxy = zero, sxz = zero, syy = zero, syz = zero, szz = zero;
-    for(std::size_t l = 0; l < P; l += 4)
-    {
-      Double4 x, y, z;
-      load4(x, coordinate[0] + l);
-      load4(y, coordinate[1] + l);
-      load4(z, coordinate[2] + l);
-      sx += x;
-      sy += y;
-      sz += z;
-      sxx += x * x;
-      sxy += x * y;
-      sxz += x * z;
-      syy += y * y;
-      syz += y * z;
-      szz += z * z;
-    }
-    const Double4 all[9] = {sx, sy, sz, sxx, sxy, sxz, syy, syz, szz};
-    for(int k = 0; k < 9; ++k) sums[k] = reduce4(all[k]);
-  }
-};
-
-/// Eigen-decomposition of the symmetric 3 x 3 matrix `A` (the PCA's covariance): eigenvalues in
-/// ascending order, the eigenvectors in the matching columns. Eigen's closed form
-/// (SelfAdjointEigenSolver::computeDirect, about 100 ns against 350 ns for the iterative QR on one
-/// core) is kept when it is as accurate as the iterative solver, which is backward stable: its
-/// columns orthonormal and each residual |A v_i - lambda_i v_i| within
-/// pca_direct_residual_bound eps |A|_F. Then every eigenvalue is within that of one of A's, and
-/// each eigenvector within that over its eigenvalue's gap (the bounds of the iterative solver,
-/// up to the constant). Otherwise (close eigenvalues, on which the closed form loses digits) the
-/// iterative solver's result. Returns false if neither succeeds.
-constexpr double pca_direct_residual_bound = 16.;
-
-inline bool symmetric_eigen_3(const Eigen::Matrix3d& A, Eigen::Vector3d& values, Eigen::Matrix3d& vectors)
-{
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
-  eig.computeDirect(A);
-  values = eig.eigenvalues();
-  vectors = eig.eigenvectors();
-  const double eps = std::numeric_limits<double>::epsilon();
-  const double residual_bound = pca_direct_residual_bound * eps * A.norm();
-  const Eigen::Matrix3d residuals = A * vectors - vectors * values.asDiagonal();
-  const Eigen::Matrix3d gram = vectors.transpose() * vectors - Eigen::Matrix3d::Identity();
-  bool accurate = values.allFinite() && vectors.allFinite() && gram.cwiseAbs().maxCoeff() <= 8. * eps;
-  for(int i = 0; i < 3 && accurate; ++i)
-    accurate = residuals.col(i).norm() <= residual_bound;
-  if(accurate)
-    return true;
-  eig.compute(A);
-  if(eig.info() != Eigen::Success)
-    return false;
-  values = eig.eigenvalues();
-  vectors = eig.eigenvectors();
-  return true;
-}
-
 /// Result of Fitter::fit. The coefficients live in the Fitter (see Fitter::coefficients()).
 struct Fit_result
 {
@@ -178,7 +71,8 @@ struct Fit_result
   bool success() const { return status == Fit_status::SUCCESS; }
 };
 
-/// The fitting core. One instance per thread; reuse it across points.
+/// The fitting core. One instance per thread; reuse it across points. Its members are scratch
+/// buffers and the results of the last fit; the settings of a call are passed to each step.
 class Fitter
 {
 public:
@@ -193,15 +87,78 @@ public:
   {
     out = Fit_result();
     out.number_of_points = L;
-    want_condition_ = options.compute_condition_number;
-    normal_weight_ = options.neighbor_normal_weight > 0. && std::isfinite(options.neighbor_normal_weight)
-                       ? options.neighbor_normal_weight : 0.;
-    normals_ = normal_weight_ > 0. ? neighbor_normals : nullptr;
-    compact_ = options.compact_weights;
+    const Fit_call call = make_call(options, L, neighbor_normals);
+    Orders orders;
+    double radius = 0.;
+    const Fit_status admitted = admit(offsets, L, requested_order, options, hint_normal, orders, radius);
+    if(admitted != Fit_status::SUCCESS)
+      return fail(out, admitted);
+    out.radius = radius;
+    const double inv_radius = 1. / radius;
+    rescale(offsets, L, inv_radius);
+    Frame frame;
+    if(!initial_frame(L, options, hint_normal, frame, out))
+      return fail(out, Fit_status::DEGENERATE_NEIGHBORHOOD);
+    out.initial_frame = frame;
+    Frame_search search;
+    Height_derivatives first_derivatives;
+    if(!fit_and_search(call, orders, frame, hint_normal, inv_radius, out, search, first_derivatives))
+      return fail(out, Fit_status::DEGENERATE_NEIGHBORHOOD);
+    keep(search, orders.order, first_derivatives, inv_radius, options.curvature_frame, out);
+    return out.status;
+  }
+
+  /// Real unknowns of the kept fit, in rescaled units (f^{rescaled}_{k,n} = f_{k,n} Rf^{k-1}),
+  /// in the layout of basis.h. Valid until the next call of fit().
+  const double* coefficients() const { return best_.data(); }
+
+private:
+  // The settings of one call of fit(), passed to the steps that read them (never stored).
+  struct Fit_call
+  {
+    const Fitting_options& options;
+    std::size_t L;                  // number of points
+    double normal_weight;           // weight of the Hermite slope rows (0: none)
+    const Eigen::Vector3d* normals; // the neighbors' normals, null without slope rows
+    bool weighted() const { return normals || options.compact_weights; }
+  };
+
+  static Fit_call make_call(const Fitting_options& options, std::size_t L, const Eigen::Vector3d* neighbor_normals)
+  {
+    const double w = options.neighbor_normal_weight;
+    const double normal_weight = w > 0. && std::isfinite(w) ? w : 0.;
+    return Fit_call{options, L, normal_weight, normal_weight > 0. ? neighbor_normals : nullptr};
+  }
+
+  // The order to fit (lowered while the system is rank-deficient) and the lowest one accepted.
+  struct Orders
+  {
+    std::size_t order = 0, minimum = 0;
+  };
+
+  struct Frame_search
+  {
+    Frame frame;
+    double tilt = 0., condition = 0.;
+    std::size_t corrections = 0;
+  };
+
+  Fit_status fail(Fit_result& out, Fit_status s)
+  {
+    out.status = s;
+    out.order = 0;
+    return s;
+  }
+
+  // Checks the input and chooses the orders and the radius Rf; SUCCESS or the reason of the failure.
+  static Fit_status admit(const Eigen::Vector3d* offsets, std::size_t L, std::size_t requested_order,
+                          const Fitting_options& options, const Eigen::Vector3d* hint_normal, Orders& orders,
+                          double& radius)
+  {
     if(requested_order < 1)
-      return fail(out, Fit_status::TOO_FEW_POINTS);
+      return Fit_status::TOO_FEW_POINTS;
     if(hint_normal && !hint_normal->allFinite())
-      return fail(out, Fit_status::NON_FINITE_INPUT);
+      return Fit_status::NON_FINITE_INPUT;
     // One pass without branches: `not_finite` stays 0 unless a coordinate is infinite or NaN
     // (x - x is NaN exactly then), and max2 is the largest squared norm.
     double max2 = 0., not_finite = 0.;
@@ -213,83 +170,95 @@ public:
       max2 = max2 < d2 ? d2 : max2;
     }
     if(not_finite != 0.)
-      return fail(out, Fit_status::NON_FINITE_INPUT);
-    const std::size_t min_order = (std::min)((std::max)(options.minimum_order, std::size_t(1)), requested_order);
+      return Fit_status::NON_FINITE_INPUT;
+    if(!choose_orders(L, requested_order, options, orders))
+      return Fit_status::TOO_FEW_POINTS;
+    radius = options.neighborhood_radius > 0 ? options.neighborhood_radius : std::sqrt(max2);
+    if(!(radius > 0.) || !std::isfinite(radius))
+      return Fit_status::DEGENERATE_NEIGHBORHOOD;
+    if(radius < 1e-20 || radius > 1e20) // outputs in world units would overflow: Fit_status::OUT_OF_RANGE
+      return Fit_status::OUT_OF_RANGE;
+    return Fit_status::SUCCESS;
+  }
+
+  // Adaptive order: the largest order <= requested_order with at least beta points per unknown.
+  // Returns false if it is below the minimum order.
+  static bool choose_orders(std::size_t L, std::size_t requested_order, const Fitting_options& options, Orders& orders)
+  {
+    orders.minimum = (std::min)((std::max)(options.minimum_order, std::size_t(1)), requested_order);
     // Start from the largest order whose (K+1)(K+2)/2 unknowns fit in L points (beta >= 1): an
     // absurd requested order (e.g. 2^40) would overflow number_of_coefficients() and make the
     // one-by-one reduction below loop for ~2^40 steps. This cap changes no result.
     std::size_t max_order = 0;
     while(number_of_coefficients(max_order + 1) <= L) ++max_order;
-    std::size_t order = (std::min)(requested_order, max_order);
+    orders.order = (std::min)(requested_order, max_order);
     // beta < 1 or NaN (possible through Fitting_options; the functions reject it) reads as 1.
     const double beta = options.neighbors_per_coefficient >= 1. ? options.neighbors_per_coefficient : 1.;
-    while(order >= min_order && double(L) < beta * double(number_of_coefficients(order)))
-      --order;
-    if(order < min_order || L == 0)
-      return fail(out, Fit_status::TOO_FEW_POINTS);
+    while(orders.order >= orders.minimum && double(L) < beta * double(number_of_coefficients(orders.order)))
+      --orders.order;
+    return orders.order >= orders.minimum && L > 0;
+  }
 
-    const double radius = options.neighborhood_radius > 0 ? options.neighborhood_radius : std::sqrt(max2);
-    if(!(radius > 0.) || !std::isfinite(radius))
-      return fail(out, Fit_status::DEGENERATE_NEIGHBORHOOD);
-    if(radius < 1e-20 || radius > 1e20) // outputs in world units would overflow: Fit_status::OUT_OF_RANGE
-      return fail(out, Fit_status::OUT_OF_RANGE);
-    out.radius = radius;
-
-    // Rescaled offsets: all later work is in units of Rf. Stored coordinate by coordinate (x, y, z
-    // columns of stride padded_rows(L), zero padding rows) for the vectorized loops below.
-    const double inv_radius = 1. / radius;
+  // Rescaled offsets into scaled_: all later work is in units of Rf. Stored coordinate by coordinate
+  // (x, y, z columns of stride padded_rows(L), zero padding rows) for the vectorized loops.
+  void rescale(const Eigen::Vector3d* offsets, std::size_t L, double inv_radius)
+  {
     const std::size_t P = padded_rows(L);
     scaled_.resize(3 * P);
     for(std::size_t l = 0; l < L; ++l)
       for(int i = 0; i < 3; ++i) scaled_[i * P + l] = offsets[l][i] * inv_radius;
     for(std::size_t l = L; l < P; ++l)
       for(int i = 0; i < 3; ++i) scaled_[i * P + l] = 0.;
+  }
 
-    Frame frame;
-    if(!initial_frame(L, options, hint_normal, frame, out))
-      return fail(out, Fit_status::DEGENERATE_NEIGHBORHOOD);
-    out.initial_frame = frame;
-
-    // The tangent-plane search runs at the fit order, or at the lower tangent_plane_order: then
-    // one fit at the full order follows, in the plane found (and, for the curvature of
-    // INITIAL_FRAME, one in the initial frame).
+  // The first fit and the tangent-plane search from `frame`; the kept fit goes to best_. The search
+  // runs at the fit order, or at the lower tangent_plane_order: then one fit at the full order
+  // follows, in the plane found (and, for the curvature of INITIAL_FRAME, one in the initial frame).
+  // Returns false if no order >= orders.minimum can be fitted.
+  bool fit_and_search(const Fit_call& call, Orders& orders, const Frame& frame, const Eigen::Vector3d* hint,
+                      double inv_radius, Fit_result& out, Frame_search& search, Height_derivatives& first_derivatives)
+  {
+    const Fitting_options& options = call.options;
+    std::size_t& order = orders.order;
     const std::size_t search_order =
       options.tangent_plane_order > 0 ? (std::min)(options.tangent_plane_order, order) : order;
     const bool low_order_search = search_order < order && options.correction_iterations > 0 &&
-                                  fit_in_frame(L, search_order, frame, options.robust_iterations, first_);
-    Height_derivatives first_derivatives;
-    if(low_order_search)
-    {
-      if(options.curvature_frame == Curvature_frame::INITIAL_FRAME)
-      {
-        if(!fit_lowering_order(L, order, min_order, frame, options.robust_iterations, trial_))
-          return fail(out, Fit_status::DEGENERATE_NEIGHBORHOOD);
-        first_derivatives = height_derivatives(trial_.data(), order, inv_radius);
-      }
-      out.initial_tilt = tilt(first_.data(), search_order);
-      const Frame_search search = search_tangent_frame(L, search_order, frame, options, hint_normal);
-      if(!fit_lowering_order(L, order, min_order, search.frame, options.robust_iterations, best_))
-        return fail(out, Fit_status::DEGENERATE_NEIGHBORHOOD);
-      out.frame = search.frame;
-      out.corrections = search.corrections;
-      out.final_tilt = tilt(best_.data(), order);
-      out.condition_number = condition_;
-    }
-    else
+                                  fit_in_frame(call, search_order, frame, first_);
+    if(!low_order_search)
     {
       // First fit, lowering the order while the system is rank-deficient, then the search.
-      if(!fit_lowering_order(L, order, min_order, frame, options.robust_iterations, first_))
-        return fail(out, Fit_status::DEGENERATE_NEIGHBORHOOD);
+      if(!fit_lowering_order(call, orders, frame, first_))
+        return false;
       first_derivatives = height_derivatives(first_.data(), order, inv_radius);
       out.initial_tilt = tilt(first_.data(), order);
-      const Frame_search search = search_tangent_frame(L, order, frame, options, hint_normal);
-      out.frame = search.frame;
-      out.corrections = search.corrections;
-      out.final_tilt = search.tilt;
-      out.condition_number = search.condition;
+      search = search_tangent_frame(call, order, frame, hint);
+      return true;
     }
-    out.order = order;
     if(options.curvature_frame == Curvature_frame::INITIAL_FRAME)
+    {
+      if(!fit_lowering_order(call, orders, frame, trial_))
+        return false;
+      first_derivatives = height_derivatives(trial_.data(), order, inv_radius);
+    }
+    out.initial_tilt = tilt(first_.data(), search_order);
+    search = search_tangent_frame(call, search_order, frame, hint);
+    if(!fit_lowering_order(call, orders, search.frame, best_))
+      return false;
+    search.tilt = tilt(best_.data(), order);
+    search.condition = condition_;
+    return true;
+  }
+
+  // The shared tail of fit(): the kept frame, fit and curvature into `out`.
+  void keep(const Frame_search& search, std::size_t order, const Height_derivatives& first_derivatives,
+            double inv_radius, Curvature_frame curvature_frame, Fit_result& out) const
+  {
+    out.frame = search.frame;
+    out.corrections = search.corrections;
+    out.final_tilt = search.tilt;
+    out.condition_number = search.condition;
+    out.order = order;
+    if(curvature_frame == Curvature_frame::INITIAL_FRAME)
     {
       out.curvature_derivatives = first_derivatives;
       out.curvature_frame = out.initial_frame;
@@ -300,38 +269,17 @@ public:
       out.curvature_frame = out.frame;
     }
     out.status = Fit_status::SUCCESS;
-    return out.status;
   }
 
-  /// Real unknowns of the kept fit, in rescaled units (f^{rescaled}_{k,n} = f_{k,n} Rf^{k-1}),
-  /// in the layout of basis.h. Valid until the next call of fit().
-  const double* coefficients() const { return best_.data(); }
-
-private:
-  Fit_status fail(Fit_result& out, Fit_status s)
-  {
-    out.status = s;
-    out.order = 0;
-    return s;
-  }
-
-  // Fits at `order` in `frame`, lowering `order` (not below min_order) while the system is
+  // Fits at orders.order in `frame`, lowering it (not below orders.minimum) while the system is
   // rank-deficient. Returns false if no order works.
-  bool fit_lowering_order(std::size_t L, std::size_t& order, std::size_t min_order, const Frame& frame,
-                          std::size_t robust_iterations, std::vector<double>& c)
+  bool fit_lowering_order(const Fit_call& call, Orders& orders, const Frame& frame, std::vector<double>& c)
   {
-    for(; order >= min_order; --order) // min_order >= 1: no wrap-around
-      if(fit_in_frame(L, order, frame, robust_iterations, c))
+    for(; orders.order >= orders.minimum; --orders.order) // minimum >= 1: no wrap-around
+      if(fit_in_frame(call, orders.order, frame, c))
         return true;
     return false;
   }
-
-  struct Frame_search
-  {
-    Frame frame;
-    double tilt = 0., condition = 0.;
-    std::size_t corrections = 0;
-  };
 
   // Tangent-plane correction (doc/Wavejets/Mathematics.txt §2.5) from the fit first_ of order `order` in
   // `frame`: re-fit in the plane orthogonal to the fitted normal, at most
@@ -339,7 +287,7 @@ private:
   // stop as soon as a re-fit does not lower it. A corrected frame whose normal would point away
   // from the given normal `hint` (possible across sharp edges) is not taken: the frame keeps the
   // orientation the normal gave it.
-  Frame_search search_tangent_frame(std::size_t L, std::size_t order, const Frame& frame, const Fitting_options& options,
+  Frame_search search_tangent_frame(const Fit_call& call, std::size_t order, const Frame& frame,
                                     const Eigen::Vector3d* hint)
   {
     const std::size_t B = number_of_coefficients(order);
@@ -348,12 +296,12 @@ private:
     best.tilt = tilt(first_.data(), order);
     best.frame = frame;
     best.condition = condition_;
-    for(std::size_t it = 0; it < options.correction_iterations && best.tilt > 0.; ++it)
+    for(std::size_t it = 0; it < call.options.correction_iterations && best.tilt > 0.; ++it)
     {
       const Frame corrected = tilted_frame(best.frame, best_.data(), order);
       if(hint && !(corrected.n.dot(*hint) > 0.))
         break;
-      if(!fit_in_frame(L, order, corrected, options.robust_iterations, trial_))
+      if(!fit_in_frame(call, order, corrected, trial_))
         break;
       const double t = tilt(trial_.data(), order);
       if(!(t < best.tilt))
@@ -371,7 +319,6 @@ private:
   {
     return order >= 1 ? 0.5 * std::sqrt(c[1] * c[1] + c[2] * c[2]) : 0.;
   }
-
   // PCA of the rescaled offsets (smallest eigenvalue: n), or the seed normal.
   bool initial_frame(std::size_t L, const Fitting_options& options, const Eigen::Vector3d* hint, Frame& f,
                      Fit_result& out)
@@ -463,17 +410,17 @@ private:
   // Builds the system [A | h] in `frame` (column-major, column stride padded_rows(L), zero
   // padding rows) and solves it (with optional IRLS passes) into `c`. Without IRLS the system is
   // built directly in the solver's scratch work_; IRLS keeps it in system_ for the reweighted passes.
-  bool fit_in_frame(std::size_t L, std::size_t order, const Frame& frame, std::size_t robust_iterations,
-                    std::vector<double>& c)
+  bool fit_in_frame(const Fit_call& call, std::size_t order, const Frame& frame, std::vector<double>& c)
   {
-    if(normals_ || compact_)
-      return fit_in_frame_weighted(L, order, frame, robust_iterations, c);
+    if(call.weighted())
+      return fit_in_frame_weighted(call, order, frame, c);
+    const std::size_t L = call.L;
     const std::size_t B = number_of_coefficients(order);
     const std::size_t P = padded_rows(L);
-    const bool keep_system = robust_iterations > 0;
+    const bool keep_system = call.options.robust_iterations > 0;
     // Order 2 without IRLS nor condition number: the system is solved from its moments, not built
     // (solver_choice.h, order2_least_squares()); if its guards refuse it, it is built and solved below.
-    if(order2_from_moments(order, L, keep_system, want_condition_))
+    if(order2_from_moments(order, L, keep_system, call.options.compute_condition_number))
     {
       coordinates_.resize(3 * P);
       double* X = coordinates_.data();
@@ -490,10 +437,10 @@ private:
     project_onto_frame(L, P, frame, h);
     evaluate_basis_columns(xs_.data(), ys_.data(), L, P, order, A);
     c.resize(B);
-    if(keep_system ? !solve_weighted(L, B, nullptr, c) : !solve_work(L, B, c, true))
+    if(keep_system ? !solve_weighted(call, L, B, nullptr, c) : !solve_work(call, L, B, c, true))
       return false;
 
-    for(std::size_t it = 0; it < robust_iterations; ++it)
+    for(std::size_t it = 0; it < call.options.robust_iterations; ++it)
     {
       // Tukey biweight on residuals scaled by 1.4826 MAD.
       absolute_residuals(A, P, L, B, c);
@@ -503,51 +450,45 @@ private:
       const double cutoff = 4.685 * scale;
       weights_.resize(L);
       for(std::size_t l = 0; l < L; ++l)
-      {
-        const double t = residual_[l] / cutoff;
-        weights_[l] = t < 1. ? (1. - t * t) : 0.; // sqrt of the biweight (1 - t^2)^2
-      }
-      if(!solve_weighted(L, B, weights_.data(), trial_solution_))
+        weights_[l] = tukey(residual_[l], cutoff);
+      if(!solve_weighted(call, L, B, weights_.data(), trial_solution_))
         break;
       c.assign(trial_solution_.begin(), trial_solution_.end());
     }
     return true;
   }
 
+  // Square root of Tukey's biweight (1 - t^2)^2 of a residual, t = residual / cutoff.
+  static double tukey(double residual, double cutoff)
+  {
+    const double t = residual / cutoff;
+    return t < 1. ? 1. - t * t : 0.;
+  }
+
   // Neighbors whose normal m is nearly parallel to the fitting plane give no slope rows: their
   // slope -(m.u)/(m.n) is huge and meaningless for a height field over the plane.
   static constexpr double minimum_normal_cosine = 0.2;
+
+  // The Hermite slope rows of a fit (scratch, reused).
+  struct Slope_rows
+  {
+    std::vector<std::size_t> points;                    // the neighbors that give slope rows
+    std::vector<std::pair<double, double> > targets;    // their slopes (dz/dx, dz/dy) in the frame
+    std::vector<double> weights;                        // cos^2 of their normal's angle to the frame normal
+    Aligned_vector x, y, gradient;                      // their (x, y) and the basis with its gradient there
+  };
 
   // fit_in_frame() with compact weights and/or the Hermite rows (Fitting_options::neighbor_normal_weight):
   // rows 0..L-1 are the heights, rows L..L+M-1 and L+M..L+2M-1 the slopes dz/dx and dz/dy at the M
   // points whose normal passes the test above. The (unweighted) system is kept in system_, each row r
   // is scaled by base_[r] (sqrt of the compact weight of its point, times the normal weight for slope
-  // rows). IRLS: Tukey biweight on each kind of row with its own scale (1.4826 MAD); a point gets the
-  // smallest weight of its rows, on all of its rows (an outlier is one in position and normal).
-  bool fit_in_frame_weighted(std::size_t L, std::size_t order, const Frame& frame, std::size_t robust_iterations,
-                             std::vector<double>& c)
+  // rows).
+  bool fit_in_frame_weighted(const Fit_call& call, std::size_t order, const Frame& frame, std::vector<double>& c)
   {
+    const std::size_t L = call.L;
     const std::size_t B = number_of_coefficients(order);
-    slope_points_.clear();
-    slope_targets_.clear();
-    slope_weights_.clear();
-    if(normals_)
-      for(std::size_t l = 0; l < L; ++l)
-      {
-        const Eigen::Vector3d& m = normals_[l];
-        if(!m.allFinite())
-          continue;
-        const double mn = m.dot(frame.n);
-        if(!(std::abs(mn) >= minimum_normal_cosine * m.norm()) || mn == 0.)
-          continue;
-        slope_points_.push_back(l);
-        slope_targets_.emplace_back(-m.dot(frame.u) / mn, -m.dot(frame.v) / mn);
-        // The slope of a normal at angle theta from the frame normal moves by up to d theta / cos^2 theta
-        // when the normal turns by d theta: its rows are multiplied by cos^2 theta, so that a tilted
-        // noisy normal weighs no more than its angular error warrants.
-        slope_weights_.push_back(mn * mn / m.squaredNorm());
-      }
-    const std::size_t M = slope_points_.size(), R = L + 2 * M;
+    collect_slope_rows(call, frame);
+    const std::size_t M = slopes_.points.size(), R = L + 2 * M;
     const std::size_t P = padded_rows(R);
     system_.resize(P * (B + 1));
     double* A = system_.data();
@@ -558,44 +499,86 @@ private:
     for(std::size_t l = 0; l < L; ++l) // sqrt of the weight (1 - |d|^2)^2
     {
       const double* d = scaled_.data() + l;
-      base_[l] = compact_ ? (std::max)(1. - (d[0] * d[0] + d[PL] * d[PL] + d[2 * PL] * d[2 * PL]), 0.) : 1.;
+      base_[l] = call.options.compact_weights
+                   ? (std::max)(1. - (d[0] * d[0] + d[PL] * d[PL] + d[2 * PL] * d[2 * PL]), 0.) : 1.;
     }
     evaluate_basis_columns(xs_.data(), ys_.data(), L, P, order, A);
     if(M > 0)
-    {
-      const std::size_t PM = padded_rows(M);
-      slope_x_.resize(PM);
-      slope_y_.resize(PM);
-      for(std::size_t m = 0; m < M; ++m)
-      {
-        slope_x_[m] = xs_[slope_points_[m]];
-        slope_y_[m] = ys_[slope_points_[m]];
-      }
-      for(std::size_t m = M; m < PM; ++m) slope_x_[m] = slope_y_[m] = 0.;
-      gradient_.resize(3 * PM * B);
-      double* V = gradient_.data();
-      double* Gx = V + PM * B;
-      double* Gy = Gx + PM * B;
-      evaluate_basis_columns(slope_x_.data(), slope_y_.data(), M, PM, order, V);
-      evaluate_basis_gradient_columns(slope_x_.data(), slope_y_.data(), M, PM, order, V, Gx, Gy);
-      for(std::size_t b = 0; b < B; ++b)
-        for(std::size_t m = 0; m < M; ++m)
-        {
-          A[b * P + L + m] = Gx[b * PM + m];
-          A[b * P + L + M + m] = Gy[b * PM + m];
-        }
-      for(std::size_t m = 0; m < M; ++m)
-      {
-        h[L + m] = slope_targets_[m].first;
-        h[L + M + m] = slope_targets_[m].second;
-        base_[L + m] = base_[L + M + m] = normal_weight_ * slope_weights_[m] * base_[slope_points_[m]];
-      }
-    }
+      add_slope_rows(call, order, P, A);
     c.resize(B);
-    if(!solve_weighted(R, B, base_.data(), c))
+    if(!solve_weighted(call, R, B, base_.data(), c))
       return false;
+    robust_passes_weighted(call, A, P, B, c);
+    return true;
+  }
 
-    for(std::size_t it = 0; it < robust_iterations; ++it)
+  // The neighbors whose normal gives slope rows in `frame`, with their slopes and weights (into slopes_).
+  void collect_slope_rows(const Fit_call& call, const Frame& frame)
+  {
+    slopes_.points.clear();
+    slopes_.targets.clear();
+    slopes_.weights.clear();
+    if(!call.normals)
+      return;
+    for(std::size_t l = 0; l < call.L; ++l)
+    {
+      const Eigen::Vector3d& m = call.normals[l];
+      if(!m.allFinite())
+        continue;
+      const double mn = m.dot(frame.n);
+      if(!(std::abs(mn) >= minimum_normal_cosine * m.norm()) || mn == 0.)
+        continue;
+      slopes_.points.push_back(l);
+      slopes_.targets.emplace_back(-m.dot(frame.u) / mn, -m.dot(frame.v) / mn);
+      // The slope of a normal at angle theta from the frame normal moves by up to d theta / cos^2 theta
+      // when the normal turns by d theta: its rows are multiplied by cos^2 theta, so that a tilted
+      // noisy normal weighs no more than its angular error warrants.
+      slopes_.weights.push_back(mn * mn / m.squaredNorm());
+    }
+  }
+
+  // Writes the slope rows L..L+2M-1 of [A | h] (column stride P) and their weights into base_.
+  void add_slope_rows(const Fit_call& call, std::size_t order, std::size_t P, double* A)
+  {
+    const std::size_t L = call.L, B = number_of_coefficients(order), M = slopes_.points.size();
+    double* h = A + B * P;
+    const std::size_t PM = padded_rows(M);
+    slopes_.x.resize(PM);
+    slopes_.y.resize(PM);
+    for(std::size_t m = 0; m < M; ++m)
+    {
+      slopes_.x[m] = xs_[slopes_.points[m]];
+      slopes_.y[m] = ys_[slopes_.points[m]];
+    }
+    for(std::size_t m = M; m < PM; ++m) slopes_.x[m] = slopes_.y[m] = 0.;
+    slopes_.gradient.resize(3 * PM * B);
+    double* V = slopes_.gradient.data();
+    double* Gx = V + PM * B;
+    double* Gy = Gx + PM * B;
+    evaluate_basis_columns(slopes_.x.data(), slopes_.y.data(), M, PM, order, V);
+    evaluate_basis_gradient_columns(slopes_.x.data(), slopes_.y.data(), M, PM, order, V, Gx, Gy);
+    for(std::size_t b = 0; b < B; ++b)
+      for(std::size_t m = 0; m < M; ++m)
+      {
+        A[b * P + L + m] = Gx[b * PM + m];
+        A[b * P + L + M + m] = Gy[b * PM + m];
+      }
+    for(std::size_t m = 0; m < M; ++m)
+    {
+      h[L + m] = slopes_.targets[m].first;
+      h[L + M + m] = slopes_.targets[m].second;
+      base_[L + m] = base_[L + M + m] = call.normal_weight * slopes_.weights[m] * base_[slopes_.points[m]];
+    }
+  }
+
+  // IRLS of fit_in_frame_weighted(): Tukey biweight on each kind of row with its own scale (1.4826
+  // MAD); a point gets the smallest weight of its rows, on all of its rows (an outlier is one in
+  // position and normal).
+  void robust_passes_weighted(const Fit_call& call, const double* A, std::size_t P, std::size_t B,
+                              std::vector<double>& c)
+  {
+    const std::size_t L = call.L, M = slopes_.points.size(), R = L + 2 * M;
+    for(std::size_t it = 0; it < call.options.robust_iterations; ++it)
     {
       absolute_residuals(A, P, R, B, c);
       const double height_cutoff = 4.685 * 1.4826 * median(residual_.data(), L);
@@ -603,26 +586,21 @@ private:
       const bool reweight_heights = height_cutoff > 4.685 * 1e-14, reweight_slopes = slope_cutoff > 4.685 * 1e-14;
       if(!reweight_heights && !reweight_slopes)
         break; // (near) exact fit: nothing to reweight
-      auto tukey = [](double residual, double cutoff) { // sqrt of the biweight (1 - t^2)^2
-        const double t = residual / cutoff;
-        return t < 1. ? 1. - t * t : 0.;
-      };
       weights_.resize(R);
       for(std::size_t l = 0; l < L; ++l)
         weights_[l] = reweight_heights ? tukey(residual_[l], height_cutoff) : 1.;
       if(reweight_slopes)
         for(std::size_t m = 0; m < M; ++m)
         {
-          double& w = weights_[slope_points_[m]];
+          double& w = weights_[slopes_.points[m]];
           w = (std::min)(w, (std::min)(tukey(residual_[L + m], slope_cutoff), tukey(residual_[L + M + m], slope_cutoff)));
         }
-      for(std::size_t m = 0; m < M; ++m) weights_[L + m] = weights_[L + M + m] = weights_[slope_points_[m]];
+      for(std::size_t m = 0; m < M; ++m) weights_[L + m] = weights_[L + M + m] = weights_[slopes_.points[m]];
       for(std::size_t r = 0; r < R; ++r) weights_[r] *= base_[r];
-      if(!solve_weighted(R, B, weights_.data(), trial_solution_))
+      if(!solve_weighted(call, R, B, weights_.data(), trial_solution_))
         break;
       c.assign(trial_solution_.begin(), trial_solution_.end());
     }
-    return true;
   }
 
   // residual_[r] = |h_r - (A c)_r| for the rows r < R of the system [A | h] (column stride P).
@@ -647,30 +625,32 @@ private:
   }
 
   // Least squares on a copy of system_ in work_, with rows scaled by sqrt_weights (null: unweighted).
-  bool solve_weighted(std::size_t L, std::size_t B, const double* sqrt_weights, std::vector<double>& c)
+  bool solve_weighted(const Fit_call& call, std::size_t L, std::size_t B, const double* sqrt_weights,
+                      std::vector<double>& c)
   {
     const std::size_t P = padded_rows(L);
     work_.assign(system_.begin(), system_.begin() + P * (B + 1));
     if(!sqrt_weights) // the unweighted height rows of fit_in_frame(): the Wavejet basis itself
-      return solve_work(L, B, c, true);
+      return solve_work(call, L, B, c, true);
     for(std::size_t b = 0; b <= B; ++b)
     {
       double* column = work_.data() + b * P;
       for(std::size_t l = 0; l < L; ++l) column[l] *= sqrt_weights[l];
     }
-    return solve_work(L, B, c, false);
+    return solve_work(call, L, B, c, false);
   }
 
-  // Least squares on the system [A | h] in work_ (destroyed; R on return if want_condition_, see
-  // least_squares.h).
+  // Least squares on the system [A | h] of L rows in work_ (destroyed; R on return if the condition
+  // number is wanted, see least_squares.h).
   // `wavejet_basis`: A is the basis of evaluate_basis_columns() at the order of B unknowns (no
   // weights, no slope rows), solved by wavejet_least_squares(); else by least_squares().
-  bool solve_work(std::size_t L, std::size_t B, std::vector<double>& c, bool wavejet_basis)
+  bool solve_work(const Fit_call& call, std::size_t L, std::size_t B, std::vector<double>& c, bool wavejet_basis)
   {
+    const bool want_condition = call.options.compute_condition_number;
     const std::size_t P = padded_rows(L);
     solver_scratch_.resize(wavejet_basis ? wavejet_least_squares_scratch_size(L, B) : least_squares_scratch_size(L, B));
     c.resize(B);
-    const bool solved = want_condition_ // R: the condition number's
+    const bool solved = want_condition // R: the condition number's
                           ? (wavejet_basis ? wavejet_least_squares : least_squares)(work_.data(), L, B,
                                                                                      solver_scratch_.data(), c.data())
                           : least_squares_solution(work_.data(), L, B, solver_scratch_.data(), c.data(), wavejet_basis);
@@ -678,7 +658,7 @@ private:
       return false;
     for(std::size_t b = 0; b < B; ++b)
       if(!std::isfinite(c[b])) return false;
-    if(want_condition_)
+    if(want_condition)
     {
       Eigen::MatrixXd R = Eigen::MatrixXd::Zero(B, B);
       for(std::size_t j = 0; j < B; ++j)
@@ -690,13 +670,8 @@ private:
     return true;
   }
 
-  bool want_condition_ = false, compact_ = false;
-  double condition_ = 0., normal_weight_ = 0.;
-  const Eigen::Vector3d* normals_ = nullptr;
-  std::vector<std::size_t> slope_points_;
-  std::vector<std::pair<double, double> > slope_targets_;
-  std::vector<double> slope_weights_;
-  Aligned_vector slope_x_, slope_y_, gradient_;
+  double condition_ = 0.; // of the last solve, if Fitting_options::compute_condition_number
+  Slope_rows slopes_;
   std::vector<double> base_;
   Aligned_vector scaled_, system_, work_, xs_, ys_, coordinates_, solver_scratch_; // read by the vectorized kernels
   std::vector<double> residual_, sorted_, weights_;

@@ -57,9 +57,9 @@ inline void require(bool condition, const char* function, const char* message)
     throw std::invalid_argument(std::string(function) + ": " + message);
 }
 
-/// Everything a point-set function reads from its named parameters, except the property maps (which
+/// What every point-set function reads from its named parameters, except the property maps (which
 /// `Point_set_input` holds): read and checked once per call by `read_settings()`, then passed to the
-/// per-point loop, the kernels and the commit.
+/// per-point loop. A function's own parameters (its filter's, its output maps) are read in its header.
 struct Driver_settings
 {
   const char* function = "";               // name, for the error messages
@@ -71,11 +71,6 @@ struct Driver_settings
                                            // and they orient (or seed) the frames
   bool restrict_to_consistent_normals = false;
   bool use_neighbor_normals = false;       // Hermite fit (normals: the input's, or estimated first)
-  double evaluation_radius = 0.;           // s of a_n(s), world units; 0: Rf of each point
-  double maximum_displacement = 0.;        // clamp, world units; 0: maximum_displacement_in_radii * Rf
-  double maximum_displacement_in_radii = 0.;
-  bool write_normals = false;              // enhance_positions: also write the Wavejet normals
-  bool move_along_input_normals = false;   // enhance_positions: move along the input normals
   std::function<bool(double)> callback;    // empty if not given
 };
 
@@ -144,68 +139,54 @@ Fitting_options read_fitting_options(const NP& np, const Fitting_options& d, con
   return o;
 }
 
-/// Reads and checks the named parameters of the point-set function `f` on `points`: the one place
-/// where a function's settings are read (its defaults come from `function_defaults(f)`).
+/// Reads and checks the named parameters that every point-set function shares, with the function's
+/// defaults `d` (from `function_defaults()`). `computes_curvatures`: the function accepts
+/// `degree_monge(2)`. The function's own parameters, checks and derived settings are in its header.
 template <class PointRange, class NP>
-Driver_settings read_settings(PointRange& points, unsigned int k, const NP& np, Point_set_function f)
+Driver_settings read_settings(PointRange& points, unsigned int k, const NP& np, const Function_defaults& d,
+                              bool computes_curvatures = false)
 {
   using CGAL::parameters::choose_parameter;
   using CGAL::parameters::get_parameter;
-  using CGAL::parameters::is_default_parameter;
   namespace wnp = Wavejets::internal_np;
-  const Function_defaults d = function_defaults(f);
   const char* fn = d.name;
   Driver_settings s;
   s.function = fn;
   s.k = k;
   s.neighbor_radius = to_double(choose_parameter(get_parameter(np, CGAL::internal_np::neighbor_radius), 0.));
   s.order = read_order(np, d.order, fn);
-  check_degree_monge(np, fn, f == Point_set_function::ESTIMATE_CURVATURES);
+  check_degree_monge(np, fn, computes_curvatures);
   require(s.k >= 2 || s.neighbor_radius > 0, fn, "needs k >= 2 or neighbor_radius > 0");
   require(std::isfinite(s.neighbor_radius) && s.neighbor_radius >= 0, fn, "neighbor_radius must be finite and >= 0");
   s.fitting = read_fitting_options(np, d.fitting, fn);
   s.fitting.neighborhood_radius = s.neighbor_radius;
-  // What a function does not need is not computed. The normal estimation reads no curvature: no
-  // full-order fit in the initial frame (it only serves INITIAL_FRAME curvatures). Curvatures read
-  // from the first fit (the default) do not use the corrected frame: no re-fits (about 3x faster).
-  if(f == Point_set_function::ESTIMATE_NORMALS)
-    s.fitting.curvature_frame = Curvature_frame::TANGENT_FRAME;
-  if(f == Point_set_function::ESTIMATE_CURVATURES && s.fitting.curvature_frame == Curvature_frame::INITIAL_FRAME)
-    s.fitting.correction_iterations = 0;
   s.restrict_to_consistent_normals = choose_parameter(get_parameter(np, wnp::restrict_to_consistent_normals), false);
   s.use_neighbor_normals = choose_parameter(get_parameter(np, wnp::use_neighbor_normals), false);
-  // The filters' own parameters are read (and checked) by the functions that use them only.
-  const bool filter = f == Point_set_function::ENHANCE_POSITIONS || f == Point_set_function::ENHANCE_NORMALS;
-  const bool moves = f == Point_set_function::ENHANCE_POSITIONS;
-  s.write_normals = moves && choose_parameter(get_parameter(np, wnp::write_normals), false);
-  s.move_along_input_normals = moves && choose_parameter(get_parameter(np, wnp::move_along_input_normals), false);
   s.callback = choose_parameter(get_parameter(np, CGAL::internal_np::callback), std::function<bool(double)>());
-
-  const bool has_normals = has_normal_map(points, np);
-  if(f == Point_set_function::ESTIMATE_NORMALS || f == Point_set_function::ENHANCE_NORMALS)
-    require(has_normals, fn, "the point set has no normal map (call add_normal_map() first)");
-  require(!s.write_normals || has_normals, fn, "write_normals needs a normal map");
-  require(!s.move_along_input_normals || has_normals, fn, "move_along_input_normals needs a normal map");
   // The input normals are read when a setting uses them, and then they also orient the frames (the
   // functions whose outputs have a side use them whenever the range has them).
   const bool asked = choose_parameter(get_parameter(np, wnp::orient_with_input_normals), false) ||
                      s.restrict_to_consistent_normals || s.fitting.normal_use == Normal_use::SEED_FRAME;
-  s.read_input_normals = has_normals && (d.orients_with_input_normals || asked);
+  s.read_input_normals = has_normal_map(points, np) && (d.orients_with_input_normals || asked);
+  return s;
+}
 
-  if(filter)
-  {
-    s.evaluation_radius = to_double(choose_parameter(get_parameter(np, wnp::evaluation_radius), 0.));
-    require(std::isfinite(s.evaluation_radius) && s.evaluation_radius >= 0, fn, "evaluation_radius must be finite and >= 0");
-  }
-  s.maximum_displacement_in_radii = d.maximum_displacement_in_radii;
-  if constexpr(!is_default_parameter<NP, wnp::maximum_displacement_t>::value)
-  {
-    if(moves)
-    {
-      s.maximum_displacement = to_double(get_parameter(np, wnp::maximum_displacement));
-      require(s.maximum_displacement > 0, fn, "maximum_displacement must be > 0 (infinity switches the clamp off)");
-    }
-  }
+/// For the functions that read or write normals whatever their settings.
+template <class PointRange, class NP>
+void require_normal_map(PointRange& points, const NP& np, const char* fn)
+{
+  require(has_normal_map(points, np), fn, "the point set has no normal map (call add_normal_map() first)");
+}
+
+/// The filters' evaluation radius s of a_n(s) (`Wavejets::parameters::evaluation_radius`), world
+/// units; 0 (the default): Rf of each point.
+template <class NP>
+double read_evaluation_radius(const NP& np, const char* fn)
+{
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  const double s = to_double(choose_parameter(get_parameter(np, Wavejets::internal_np::evaluation_radius), 0.));
+  require(std::isfinite(s) && s >= 0, fn, "evaluation_radius must be finite and >= 0");
   return s;
 }
 
@@ -315,6 +296,93 @@ struct Driver_run
   Processing_report report;
 };
 
+template <class ConcurrencyTag, class Input, class Kernel>
+Driver_run fit_each_point(const Input& input, const Driver_settings& settings, const Kernel& kernel);
+
+/// The neighbors' normals of the Hermite fit (use_neighbor_normals; null without it): the input normals
+/// when they were read, else they are estimated first into `estimated` by a pass of
+/// wavejet_estimate_normals' fit (same neighborhoods, order and weights; tangent-plane search at order 2
+/// with 2 re-fits; unoriented, which the slope equations do not mind). Points without a normal
+/// (unfitted) give no slope rows. `interrupted`: the callback stopped that pass.
+template <class ConcurrencyTag, class Input>
+const std::vector<Eigen::Vector3d>* hermite_normals(const Input& input, const Driver_settings& settings,
+                                                    std::vector<Eigen::Vector3d>& estimated, bool& interrupted)
+{
+  interrupted = false;
+  if(!settings.use_neighbor_normals)
+    return nullptr;
+  if(!input.normals.empty())
+    return &input.normals;
+  Driver_settings first = settings;
+  first.use_neighbor_normals = false;
+  first.fitting.tangent_plane_order = 2;
+  first.fitting.correction_iterations = 2;
+  first.fitting.curvature_frame = Curvature_frame::TANGENT_FRAME;
+  estimated.assign(input.size(), Eigen::Vector3d::Zero());
+  interrupted = fit_each_point<ConcurrencyTag>(input, first, Normal_writer{&estimated}).report.interrupted;
+  return &estimated;
+}
+
+/// Fits the Wavejet of one point of a point-set function's input, with scratch reused across the
+/// points of a chunk (one instance per chunk).
+class Point_fitter
+{
+public:
+  /// Fits point i of `input` to its neighborhood; `neighbor_normals`: see hermite_normals().
+  template <class Input>
+  const Fit_result& fit(std::size_t i, const Input& input, const Driver_settings& settings, const Neighbor_query& query,
+                        const std::vector<Eigen::Vector3d>* neighbor_normals)
+  {
+    const Eigen::Vector3d* hint = nullptr;
+    Eigen::Vector3d normal;
+    if(settings.read_input_normals) // the input normals orient the frame
+    {
+      normal = input.normals[i];
+      if(normal.allFinite() && normal.squaredNorm() > 0) hint = &normal; // else: unoriented
+    }
+    query.neighbors(i, settings.k, settings.neighbor_radius, neighbors_, scratch_);
+    const Eigen::Vector3d p = input.position(i);
+    offsets_.assign(1, Eigen::Vector3d::Zero()); // the query point, first
+    if(neighbor_normals) normals_of_offsets_.assign(1, (*neighbor_normals)[i]);
+    for(std::size_t j : neighbors_)
+    {
+      if(settings.restrict_to_consistent_normals && hint && !(input.normals[j].dot(normal) >= 0.))
+        continue;
+      offsets_.push_back(input.position(j) - p);
+      if(neighbor_normals) normals_of_offsets_.push_back((*neighbor_normals)[j]);
+    }
+    fitter_.fit(offsets_.data(), offsets_.size(), settings.order, settings.fitting, hint, fit_,
+                neighbor_normals ? normals_of_offsets_.data() : nullptr);
+    return fit_;
+  }
+
+  /// The coefficients of the last fit (see Fitter::coefficients()).
+  const double* coefficients() const { return fitter_.coefficients(); }
+
+private:
+  Fitter fitter_;
+  Fit_result fit_;
+  std::vector<std::size_t> neighbors_;
+  Neighbor_query::Scratch scratch_;
+  std::vector<Eigen::Vector3d> offsets_, normals_of_offsets_;
+};
+
+/// The report's counts from the per-point statuses of a run.
+inline void count_points(Driver_run& run, const std::vector<unsigned char>& status,
+                         const std::vector<unsigned char>& reduced)
+{
+  Processing_report& r = run.report;
+  for(std::size_t i = 0; i < run.fitted.size(); ++i)
+  {
+    if(run.fitted[i]) { ++r.number_of_fitted_points; r.number_of_reduced_order_points += reduced[i]; }
+    else
+    {
+      ++r.number_of_unfitted_points;
+      r.number_of_non_finite_points += (status[i] == (unsigned char)(Fit_status::NON_FINITE_INPUT));
+    }
+  }
+}
+
 /// Runs `kernel(const Fitted_point&)` on every point that can be fitted. The kernel must only
 /// write to its own slot of per-point buffers (it runs concurrently under Parallel_tag).
 template <class ConcurrencyTag, class Input, class Kernel>
@@ -328,31 +396,15 @@ Driver_run fit_each_point(const Input& input, const Driver_settings& settings, c
   std::vector<unsigned char> reduced(N, 0);
   if(N == 0) return run;
 
-  const bool have_normals = !input.normals.empty();
-  // Hermite fit (use_neighbor_normals): the neighbors' normals are the input normals when they were
-  // read, else they are estimated first by a pass of wavejet_estimate_normals' fit (same
-  // neighborhoods, order and weights; tangent-plane search at order 2 with 2 re-fits; unoriented,
-  // which the slope equations do not mind). Points without a normal (unfitted) give no slope rows.
   std::vector<Eigen::Vector3d> estimated_normals;
-  const std::vector<Eigen::Vector3d>* neighbor_normals = have_normals ? &input.normals : nullptr;
-  if(settings.use_neighbor_normals && !have_normals)
+  bool first_pass_interrupted = false;
+  const std::vector<Eigen::Vector3d>* neighbor_normals =
+    hermite_normals<ConcurrencyTag>(input, settings, estimated_normals, first_pass_interrupted);
+  if(first_pass_interrupted)
   {
-    Driver_settings first = settings;
-    first.use_neighbor_normals = false;
-    first.fitting.tangent_plane_order = 2;
-    first.fitting.correction_iterations = 2;
-    first.fitting.curvature_frame = Curvature_frame::TANGENT_FRAME;
-    estimated_normals.assign(N, Eigen::Vector3d::Zero());
-    const Driver_run pass = fit_each_point<ConcurrencyTag>(input, first, Normal_writer{&estimated_normals});
-    if(pass.report.interrupted)
-    {
-      run.report.interrupted = true;
-      return run;
-    }
-    neighbor_normals = &estimated_normals;
+    run.report.interrupted = true;
+    return run;
   }
-  if(!settings.use_neighbor_normals)
-    neighbor_normals = nullptr;
 
   const Neighbor_query query(input.points, input.finite, ConcurrencyTag());
   // Points are visited in the tree's spatial order (each point's result does not depend on it).
@@ -367,11 +419,7 @@ Driver_run fit_each_point(const Input& input, const Driver_settings& settings, c
   std::atomic<bool> interrupted(false);
 
   CGAL::for_each<ConcurrencyTag>(chunks, [&](const std::size_t begin) -> bool {
-    Fitter fitter;
-    Fit_result fit;
-    std::vector<std::size_t> neighbors;
-    Neighbor_query::Scratch scratch;
-    std::vector<Eigen::Vector3d> offsets, normals_of_offsets;
+    Point_fitter fitter;
     const std::size_t end = (std::min)(begin + chunk_size, N);
     for(std::size_t position = begin; position < end; ++position)
     {
@@ -379,27 +427,7 @@ Driver_run fit_each_point(const Input& input, const Driver_settings& settings, c
       if(interrupted || progress.interrupted()) { interrupted = true; return false; }
       ++progress.advancement();
       if(!input.finite[i]) { status[i] = (unsigned char)(Fit_status::NON_FINITE_INPUT); continue; }
-
-      const Eigen::Vector3d* hint = nullptr;
-      Eigen::Vector3d normal;
-      if(settings.read_input_normals) // the input normals orient the frame
-      {
-        normal = input.normals[i];
-        if(normal.allFinite() && normal.squaredNorm() > 0) hint = &normal; // else: unoriented
-      }
-      query.neighbors(i, settings.k, settings.neighbor_radius, neighbors, scratch);
-      const Eigen::Vector3d p = input.position(i);
-      offsets.assign(1, Eigen::Vector3d::Zero()); // the query point, first
-      if(neighbor_normals) normals_of_offsets.assign(1, (*neighbor_normals)[i]);
-      for(std::size_t j : neighbors)
-      {
-        if(settings.restrict_to_consistent_normals && hint && !(input.normals[j].dot(normal) >= 0.))
-          continue;
-        offsets.push_back(input.position(j) - p);
-        if(neighbor_normals) normals_of_offsets.push_back((*neighbor_normals)[j]);
-      }
-      fitter.fit(offsets.data(), offsets.size(), settings.order, settings.fitting, hint, fit,
-                 neighbor_normals ? normals_of_offsets.data() : nullptr);
+      const Fit_result& fit = fitter.fit(i, input, settings, query, neighbor_normals);
       status[i] = (unsigned char)(fit.status);
       if(!fit.success()) continue;
       reduced[i] = fit.order < settings.order;
@@ -414,18 +442,8 @@ Driver_run fit_each_point(const Input& input, const Driver_settings& settings, c
   // would call the callback once more; there every `false` was already seen by the loop.
   if constexpr(!std::is_same<ConcurrencyTag, CGAL::Sequential_tag>::value)
     if(progress.interrupted()) interrupted = true;
-
-  Processing_report& r = run.report;
-  r.interrupted = interrupted;
-  for(std::size_t i = 0; i < N; ++i)
-  {
-    if(run.fitted[i]) { ++r.number_of_fitted_points; r.number_of_reduced_order_points += reduced[i]; }
-    else
-    {
-      ++r.number_of_unfitted_points;
-      r.number_of_non_finite_points += (status[i] == (unsigned char)(Fit_status::NON_FINITE_INPUT));
-    }
-  }
+  run.report.interrupted = interrupted;
+  count_points(run, status, reduced);
   return run;
 }
 
