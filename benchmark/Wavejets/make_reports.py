@@ -3,11 +3,11 @@
 
 The benchmark programs measure and write CSV only; this script does the report writing:
 
-  /usr/bin/python3 benchmark/Wavejets/make_reports.py [--no-plots]
+  /usr/bin/python3 benchmark/Wavejets/make_reports.py [--no-plots] [--only R1,R2] [--csv-dir DIR] [--out-dir DIR]
 
 For each report R, templates/R.md.in holds its prose; `{{table NAME ALIGN [COLUMN=VALUE ...]}}` there is replaced by
 csv/NAME.csv as a Markdown table (ALIGN: one letter per column, l or r; only the rows with these values where some
-are given, '_' standing for a space), `{{summary R}}` by the summary table a function below computes from the CSV files, `{{value NAME KEY}}` by the value of KEY in the
+are given, '_' standing for a space), `{{summary R}}` by the summary table a function below computes from the CSV files, `{{list NAME}}` by the one-column csv/NAME.csv as a bulleted list, `{{value NAME KEY}}` by the value of KEY in the
 two-column csv/NAME.csv (key,value). The plots (R.png) are drawn from the CSV files with matplotlib
 (Debian: python3-matplotlib); without it, the reports are written and the plots kept as they are.
 Python standard library otherwise.
@@ -20,8 +20,9 @@ import re
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-CSV_DIR = os.path.join(HERE, "csv")
 TEMPLATE_DIR = os.path.join(HERE, "templates")
+CSV_DIR = os.path.join(HERE, "csv")  # --csv-dir DIR: read another run's CSV files
+OUT_DIR = HERE  # --out-dir DIR: write the reports and plots there
 REPORTS = ["results", "accuracy", "accuracy_ponca", "filters", "workflows"]
 MAX_REPORT_BYTES = 40 * 1024
 
@@ -106,10 +107,11 @@ def write_report(report):
     text = re.sub(r"\{\{table (\S+) ([lr]+)((?: [^ }=]+=[^ }]+)*)\}\}",
                   lambda m: markdown_table(m.group(1), m.group(2), m.group(3)), text)
     text = re.sub(r"\{\{value (\S+) ([^}]+)\}\}", lambda m: value(m.group(1), m.group(2).strip()), text)
+    text = re.sub(r"\{\{list (\S+)\}\}", lambda m: "\n".join("* " + r[0] for r in read_csv(m.group(1))[1:]), text)
     text = re.sub(r"\{\{summary (\S+)\}\}", lambda m: SUMMARIES[m.group(1)](), text)
     if "{{" in text:
         sys.exit(f"{report}: unknown placeholder near '{text[text.index('{{'):][:60]}'")
-    path = os.path.join(HERE, report + ".md")
+    path = os.path.join(OUT_DIR, report + ".md")
     with open(path, "w") as f:
         f.write(text.rstrip("\n") + "\n")
     size = os.path.getsize(path)
@@ -146,6 +148,8 @@ def plot_results(plt):
     rows = read_csv("results.scaling_n")
     for function, marker in [("wavejet_estimate_normals", "o"), ("wavejet_enhance_positions", "s")]:
         sel = [r for r in rows[1:] if r[0] == function]
+        if not sel:
+            continue
         right.plot([float(r[3]) for r in sel], [float(r[4]) for r in sel], marker=marker,
                    label=f"{function}, K {sel[0][1]}, k {sel[0][2]}")
     right.set_xscale("log")
@@ -260,7 +264,7 @@ PLOTS = {"results": plot_results, "accuracy": plot_accuracy, "accuracy_ponca": p
          "filters": plot_filters, "workflows": plot_workflows}
 
 
-def write_plots():
+def write_plots(reports):
     try:
         import matplotlib
         matplotlib.use("Agg")
@@ -268,19 +272,32 @@ def write_plots():
     except ImportError:
         print("matplotlib not found (Debian: apt-get install python3-matplotlib): plots kept as they are")
         return
-    for report, plot in PLOTS.items():
-        fig = plot(plt)
+    for report in reports:
+        fig = PLOTS[report](plt)
         fig.tight_layout()
-        fig.savefig(os.path.join(HERE, report + ".png"), dpi=80)
+        fig.savefig(os.path.join(OUT_DIR, report + ".png"), dpi=80)
         plt.close(fig)
         print(f"wrote {report}.png")
 
 
 def main():
-    for report in REPORTS:
+    global CSV_DIR, OUT_DIR
+    args = sys.argv[1:]
+    reports = REPORTS
+    while args:
+        option = args.pop(0)
+        if option == "--csv-dir" and args:
+            CSV_DIR = os.path.abspath(args.pop(0))
+        elif option == "--out-dir" and args:
+            OUT_DIR = os.path.abspath(args.pop(0))
+        elif option == "--only" and args:
+            reports = args.pop(0).split(",")
+        elif option != "--no-plots":
+            sys.exit(__doc__)
+    for report in reports:
         write_report(report)
     if "--no-plots" not in sys.argv[1:]:
-        write_plots()
+        write_plots(reports)
 
 
 if __name__ == "__main__":
