@@ -7,8 +7,9 @@ The benchmark programs measure and write CSV only; this script does the report w
 
 For each report R, templates/R.md.in holds its prose; `{{table NAME ALIGN [COLUMN=VALUE ...]}}` there is replaced by
 csv/NAME.csv as a Markdown table (ALIGN: one letter per column, l or r; only the rows with these values where some
-are given, '_' standing for a space), `{{summary R}}` by the summary table a function below computes from the CSV files, `{{list NAME}}` by the one-column csv/NAME.csv as a bulleted list, `{{value NAME KEY}}` by the value of KEY in the
-two-column csv/NAME.csv (key,value). The plots (R.png) are drawn from the CSV files with matplotlib
+are given, '_' standing for a space), `{{summary R}}` by the summary table a function below computes from
+the CSV files, `{{list NAME}}` by the one-column csv/NAME.csv as a bulleted list, `{{value NAME KEY}}` by the
+value of KEY in the two-column csv/NAME.csv (key,value). The plots (R.png) are drawn from the CSV files with matplotlib
 (Debian: python3-matplotlib); without it, the reports are written and the plots kept as they are.
 Python standard library otherwise.
 """
@@ -94,7 +95,8 @@ def summary_results():
                            ("wavejet_enhance_positions", 6, 96)]:
         seq, par = us[(f"{function}, K {K}, k {k}", "seq")], us[(f"{function}, K {K}, k {k}", "par")]
         cgal = us.get((f"CGAL jet_estimate_normals, degree {K}, k {k}", "seq")) if "normals" in function else None
-        lines.append(f"| `{function}` | {K}, {k} | {seq[5]} | {cgal[5] if cgal else '-'} | {seq[6] or '-'} | {par[5]} |")
+        lines.append(f"| `{function}` | {K}, {k} | {seq[5]} | {cgal[5] if cgal else '-'} | {seq[6] or '-'} "
+                     f"| {par[5]} |")
     return "\n".join(lines)
 
 
@@ -216,7 +218,8 @@ def plot_filters(plt):
     dashes = {"2": "-", "3": "--", "-1": ":", "0": "-."}
     fig, axes = plt.subplots(2, 2, figsize=(14, 10))
     panels = [("filters.positions_grid", "detail", "wavejet_enhance_positions: detail gain", (-3, 5)),
-              ("filters.positions_grid", "noise", "wavejet_enhance_positions: noise gain (residual RMS out / in)", None),
+              ("filters.positions_grid", "noise", "wavejet_enhance_positions: noise gain (residual RMS out / in)",
+               None),
               ("filters.normals_grid", "detail", "wavejet_enhance_normals: tilt detail gain, relative to gain 1", None),
               ("filters.normals_grid", "noise", "wavejet_enhance_normals: noise gain, relative to gain 1", None)]
     for ax, (name, measure, title, ylim) in zip(axes.flat, panels):
@@ -252,7 +255,8 @@ def plot_workflows(plt):
                 values = [next((as_float(r[c]) for r in rows[1:] if r[0] == s and r[1] == estimator), None)
                           for s in scans]
                 ax.bar([x + e * width for x in range(len(scans))], [v or 0 for v in values], width, label=estimator)
-            ax.set_xticks([x + 0.4 - width / 2 for x in range(len(scans))], [s.split(" (")[0] for s in scans], fontsize=8)
+            ax.set_xticks([x + 0.4 - width / 2 for x in range(len(scans))], [s.split(" (")[0] for s in scans],
+                          fontsize=8)
             ax.set_title(f"{mesh}: {'normal error after orientation' if i == 0 else 'Hausdorff distance'}")
             ax.set_ylabel(column + ("" if i == 0 else " (% of the diagonal)"))
             ax.grid(axis="y", alpha=0.3)
