@@ -15,7 +15,6 @@ Python standard library otherwise.
 """
 
 import csv
-import math
 import os
 import re
 import sys
@@ -40,23 +39,29 @@ def as_float(cell):
         return None
 
 
-def bold_row_minimum(row):
-    """Best of the row in bold: the smallest of the numeric cells after the first column (the row's label)."""
-    values = [as_float(c) for c in row[1:]]
-    finite = [v for v in values if v is not None and math.isfinite(v)]
-    if not finite:
-        return row
-    best = min(finite)
-    return [row[0]] + ["**" + c + "**" if v == best else c for c, v in zip(row[1:], values)]
+def bold_best_relative_H(name, header, row):
+    """accuracy_ponca.md: the best of the row in bold, the smallest relative H RMSE among the estimators shown, taken
+    from the full-precision grid (csv/accuracy_ponca.h_rmse_grid.csv) so that rounding makes no ties; a trailing '*'
+    (some points failed) stays outside the bold."""
+    surface = name.split(".h_rmse_", 1)[1]
+    noise, k = row[0].split("%, ")
+    grid = read_csv("accuracy_ponca.h_rmse_grid")
+    full = next(r for r in grid[1:] if r[0] == surface and float(r[1]) == float(noise) and r[2] == k)
+    raw = [float(full[grid[0].index(column)]) if cell != "-" else None for column, cell in zip(header[1:], row[1:])]
+    best = min(v for v in raw if v is not None)
+    return [row[0]] + [f"**{c.rstrip('*')}**" + "*" * (len(c) - len(c.rstrip("*"))) if v == best else c
+                       for c, v in zip(row[1:], raw)]
 
 
-def bold_not_met(row):
-    return ["**not met**" if c == "not met" else c for c in row]
+def bold_verdict(name, header, row):
+    """A target's verdict in bold where it is written after a colon (accuracy_ponca.md, filters.md); "not met"
+    (results.md)."""
+    return ["**not met**" if c == "not met" else re.sub(r": (fails|pass|FAIL)$", r": **\1**", c) for c in row]
 
 
-# Tables whose rendering marks something: name pattern -> function of a row.
-ROW_STYLES = [(re.compile(r"^accuracy_ponca\.h_rmse_(?!grid)"), bold_row_minimum),
-              (re.compile(r"^(results|accuracy_ponca)\.targets"), bold_not_met)]
+# Tables whose rendering marks something: name pattern -> function of (table name, header, row).
+ROW_STYLES = [(re.compile(r"^accuracy_ponca\.h_rmse_(?!grid)"), bold_best_relative_H),
+              (re.compile(r"^(results|accuracy_ponca)\.targets|^filters\.check$"), bold_verdict)]
 
 
 def markdown_table(name, align, selection=""):
@@ -70,7 +75,7 @@ def markdown_table(name, align, selection=""):
         sys.exit(f"{name}: {len(header)} columns, alignment '{align}'")
     style = next((f for pattern, f in ROW_STYLES if pattern.search(name)), None)
     if style:
-        body = [style(r) for r in body]
+        body = [style(name, header, r) for r in body]
     lines = ["| " + " | ".join(header) + " |",
              "|" + "|".join("---:" if a == "r" else "---" for a in align) + "|"]
     lines += ["| " + " | ".join(r) + " |" for r in body]
