@@ -7,7 +7,7 @@ The benchmark programs measure and write CSV only; this script does the report w
 
 For each report R, templates/R.md.in holds its prose; `{{table NAME ALIGN [COLUMN=VALUE ...]}}` there is replaced by
 csv/NAME.csv as a Markdown table (ALIGN: one letter per column, l or r; only the rows with these values where some
-are given, '_' standing for a space), `{{summary R}}` by the summary table a function below computes from
+are given, COLUMN^=VALUE for the cells that start with VALUE, '_' standing for a space), `{{summary R}}` by the summary table a function below computes from
 the CSV files, `{{list NAME}}` by the one-column csv/NAME.csv as a bulleted list, `{{value NAME KEY}}` by the
 value of KEY in the two-column csv/NAME.csv (key,value). The plots (R.png) are drawn from the CSV files with matplotlib
 (Debian: python3-matplotlib); without it, the reports are written and the plots kept as they are.
@@ -70,7 +70,11 @@ def markdown_table(name, align, selection=""):
     header, body = rows[0], rows[1:]
     for condition in selection.split():
         column, wanted = condition.replace("_", " ").split("=", 1)
-        body = [r for r in body if r[header.index(column)] == wanted]
+        if column.endswith("^"):  # COLUMN^=VALUE: the cells that start with VALUE
+            c = header.index(column[:-1])
+            body = [r for r in body if r[c].startswith(wanted)]
+        else:
+            body = [r for r in body if r[header.index(column)] == wanted]
     if len(align) != len(header):
         sys.exit(f"{name}: {len(header)} columns, alignment '{align}'")
     style = next((f for pattern, f in ROW_STYLES if pattern.search(name)), None)
@@ -164,7 +168,8 @@ def plot_results(plt):
     right.set_xlabel("number of points N")
     right.set_ylabel("time (s), 2 threads")
     right.set_title("Time against N")
-    right.legend()
+    if right.lines:
+        right.legend()
     right.grid(which="both", alpha=0.3)
     return fig
 
