@@ -704,7 +704,8 @@ static std::vector<std::string> qr_comparison_row(const Points& points, std::siz
           std::to_string(m), fmt(us_dispatch, 2), fmt(us_baseline, 2), fmt(us_eigen, 2),
           fmt(us_eigen / us_dispatch, 1) + "x", fmt(us_eigen / us_baseline, 1) + "x", scientific(worst),
           fmt(us_semi_normal, 2), fmt(us_dispatch / us_semi_normal, 1) + "x",
-          moments ? std::string("-") : fmt(us_gram_by_dots, 2), std::to_string(fallbacks), scientific(worst_semi_normal)};
+          moments ? std::string("-") : fmt(us_gram_by_dots, 2), std::to_string(fallbacks),
+          scientific(worst_semi_normal)};
 }
 
 /// The compilation of the least-squares kernels that WI::dispatch_solver() runs on this processor.
@@ -722,7 +723,8 @@ static std::string solver_variant()
 static wavejets_bench::Csv_table qr_comparison_table(const Points& points)
 {
   wavejets_bench::Csv_table table(
-    {"K", "k", "system", "systems", "hand-written QR, dispatch (us)", "baseline kernel (us)", "Eigen HouseholderQR (us)",
+    {"K", "k", "system", "systems", "hand-written QR, dispatch (us)", "baseline kernel (us)",
+     "Eigen HouseholderQR (us)",
      "gain (dispatch)", "gain (baseline)", "max relative difference",
      "the fits' solver, dispatch (us): K 2 from the moments, the QR at K 3 and 4, the semi-normal equations from K 5 "
      "(their Gram matrix from polar moments)",
@@ -835,8 +837,9 @@ static wavejets_bench::Csv_table time_breakdown_table(const Points& input)
       final_fit.basis_us = (std::min)(final_fit.basis_us, again.basis_us);
       final_fit.solve_us = (std::min)(final_fit.solve_us, again.solve_us);
     }
-    s.add_row({c.name, fmt(total, 2), fmt(knn, 2), fmt(fit, 2), c.order == 2 ? std::string("-") : fmt(final_fit.basis_us, 2),
-               fmt(final_fit.solve_us, 2), fmt(fit - final_fit.basis_us - final_fit.solve_us, 2), fmt(total - knn - fit, 2)});
+    s.add_row({c.name, fmt(total, 2), fmt(knn, 2), fmt(fit, 2),
+               c.order == 2 ? std::string("-") : fmt(final_fit.basis_us, 2), fmt(final_fit.solve_us, 2),
+               fmt(fit - final_fit.basis_us - final_fit.solve_us, 2), fmt(total - knn - fit, 2)});
   }
   // results.md explains the columns: each the fastest of `rounds`, on `m` neighborhoods.
   return s;
@@ -875,7 +878,8 @@ static void run_speed(const Options& o, std::vector<Row>& rows, std::vector<std:
     const double ours = time_knn<CGAL::Sequential_tag>(input, k);
     std::size_t mismatches = 0;
     const double cgal = time_cgal_knn(input, k, mismatches);
-    const std::string name = "kNN alternative, CGAL Orthogonal_k_neighbor_search (the package's before), k " + std::to_string(k);
+    const std::string name =
+      "kNN alternative, CGAL Orthogonal_k_neighbor_search (the package's before), k " + std::to_string(k);
     add(name, "seq", 1, input.size(), cgal);
     notes.push_back(name + ": " + std::to_string(mismatches) + " of " + std::to_string(input.size()) +
                     " neighbor lists differ from Neighbor_query's");
@@ -1110,7 +1114,9 @@ static Scaling_tables run_scaling(const Options& o, std::vector<std::string>& no
         if(t == 1) t1 = r.seconds;
         if(t == 2 && f != "knn" && (targets.thread_speedup_min < 0 || t1 / r.seconds < targets.thread_speedup_min))
           targets.thread_speedup_min = t1 / r.seconds;
-        s.threads.add_row({f == "knn" ? "kNN only" : f == "normals" ? "wavejet_estimate_normals" : "wavejet_enhance_positions",
+        s.threads.add_row({f == "knn"       ? "kNN only"
+                           : f == "normals" ? "wavejet_estimate_normals"
+                                            : "wavejet_enhance_positions",
                            f == "knn" ? std::string("-") : std::to_string(K), std::to_string(k), std::to_string(t),
                            fmt(r.seconds, 2), fmt(t1 / r.seconds, 2) + "x"});
       }

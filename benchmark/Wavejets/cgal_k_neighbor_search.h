@@ -44,7 +44,8 @@ inline void select_nearest(Knn_candidates& candidates, unsigned int k, std::vect
 {
   static thread_local Knn_candidates buffer;
   out.clear();
-  Package_query::append_nearest_indices_in_order(candidates, (std::min)(std::size_t(k), candidates.size()), out, buffer);
+  Package_query::append_nearest_indices_in_order(candidates, (std::min)(std::size_t(k), candidates.size()), out,
+                                                 buffer);
 }
 
 /// CGAL's kd-tree over all the points as the package built it before kd_tree.h (sliding midpoint,
@@ -94,7 +95,8 @@ public:
   void neighbors(std::size_t i, unsigned int k, std::vector<std::size_t>& out, Knn_candidates& candidates) const
   {
     candidates.clear();
-    Knn search(m_tree, m_points[i], (std::min<std::size_t>)(std::size_t(k) + 1, m_points.size()), 0., true, m_distance, false);
+    Knn search(m_tree, m_points[i], (std::min<std::size_t>)(std::size_t(k) + 1, m_points.size()), 0., true, m_distance,
+               false);
     for(typename Knn::iterator it = search.begin(); it != search.end(); ++it)
       if(it->first != i) candidates.push_back(Package_query::candidate(it->second, it->first));
     select_nearest(candidates, k, out);
