@@ -1,8 +1,8 @@
 // Accuracy benchmark: curvature and normal error of Wavejets against CGAL jets (and PCA normals)
 // on surfaces with exact answers (test/Wavejets/support/analytic_surfaces.h), clean and perturbed.
 //
-// Every surface is sampled uniformly (fixed seeds) with N points (default 20000; the full run with
-// 50000 points and 300 evaluation points takes about 40 minutes on 2 cores) in [-1, 1]^3.
+// Every surface is sampled uniformly (fixed seeds) with N points (default 20000; the report's run: 50000 points
+// and 300 evaluation points, its run time in accuracy.md) in [-1, 1]^3.
 // Perturbations: Gaussian position noise sigma (percent of the bounding-box diagonal), outliers
 // (a fraction of the points moved by a random vector of a ball of radius 2.5% of the diagonal;
 // excluded from the statistics) and angular noise on the seed normals.
@@ -31,10 +31,10 @@
 // Usage: bench_accuracy [--quick] [--points N] [--eval M] [--out DIR] [--no-plot]
 //                       [--noisy-pipeline | --noisy-pipeline-only]
 // Writes DIR/accuracy.md, DIR/accuracy_*.dat, DIR/accuracy.gp and (with gnuplot) DIR/accuracy.png; the
-// generated files name each other by paths relative to DIR (run gnuplot from DIR).
-// DIR defaults to the directory of this source file.
-// --noisy-pipeline adds the section "Noisy scans: denoise, then estimate" (about 5 minutes at 20000 points on
-// 2 cores); --noisy-pipeline-only runs that section alone and merges it (and its line in "Targets") into the
+// generated files name each other by paths relative to DIR (run gnuplot from DIR). DIR defaults to the working
+// folder: the committed accuracy.md is written by make_reports.py from csv/ (see README.md in this folder).
+// --noisy-pipeline adds the section "Noisy scans: denoise, then estimate" (its run time: accuracy.md);
+// --noisy-pipeline-only runs that section alone and merges it (and its line in "Targets") into the
 // existing DIR/accuracy.md. A run without either flag keeps that section from the existing report.
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -885,11 +885,7 @@ std::string Noisy_pipeline::data_file() const
 /// Reads the options; returns false when the program should stop at once with `exit_code`.
 static bool parse_command_line(int argc, char** argv, Options& o, int& exit_code)
 {
-  {
-    std::string self = __FILE__;
-    o.out = self.substr(0, self.find_last_of('/'));
-    if(o.out == self) o.out = ".";
-  }
+  o.out = ".";
   std::ostringstream cmd;
   cmd << "bench_accuracy";
   bool points_given = false, eval_given = false;

@@ -4,7 +4,9 @@
 #define WAVEJETS_BENCH_COMMON_H
 
 #include <cstddef>
+#include <cstdlib>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -15,6 +17,52 @@
 #endif
 
 namespace wavejets_bench {
+
+/// One table of a benchmark's results, written as CSV (first row: the column names). The benchmarks write
+/// their tables as csv/<report>.<table>.csv; make_reports.py writes the Markdown reports and plots from them.
+class Csv_table
+{
+public:
+  explicit Csv_table(std::vector<std::string> header) { m_rows.push_back(std::move(header)); }
+
+  void add_row(std::vector<std::string> cells) { m_rows.push_back(std::move(cells)); }
+
+  /// The table as CSV text: cells holding a comma, a quote or a line break are quoted.
+  std::string str() const
+  {
+    std::ostringstream s;
+    for(const std::vector<std::string>& row : m_rows)
+    {
+      for(std::size_t i = 0; i < row.size(); ++i)
+      {
+        const std::string& c = row[i];
+        if(i) s << ',';
+        if(c.find_first_of(",\"\n") == std::string::npos) { s << c; continue; }
+        s << '"';
+        for(char ch : c) s << (ch == '"' ? "\"\"" : std::string(1, ch));
+        s << '"';
+      }
+      s << '\n';
+    }
+    return s.str();
+  }
+
+  /// Writes the table to `directory`/`name`.csv and says so on standard output.
+  void write(const std::string& directory, const std::string& name) const
+  {
+    const std::string path = directory + "/" + name + ".csv";
+    std::ofstream f(path);
+    f << str();
+    if(!f) { std::cerr << "cannot write " << path << "\n"; std::exit(EXIT_FAILURE); }
+    std::cout << "wrote " << path << "\n";
+  }
+
+private:
+  std::vector<std::vector<std::string> > m_rows;
+};
+
+/// A run's context for its report (the machine, the run time): a two-column table key,value.
+inline Csv_table context_table() { return Csv_table({"key", "value"}); }
 
 /// The machine, for the reports: CPU model, hardware threads and TBB's thread count. With
 /// `names_parallel_tag`, also says that the benchmark runs with Parallel_if_available_tag (sequential

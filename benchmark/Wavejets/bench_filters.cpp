@@ -37,10 +37,10 @@
 // Wavejet filter's detail gain (same lambda, K, gain), then measures that output's noise gain.
 // J-USM is also reported at g = the Wavejet gain (the comparison issue 13 quotes).
 //
-// Usage: bench_filters [--quick] [--out DIR] [--no-plot]
-// Writes DIR/filters.md, DIR/filters_positions.dat, DIR/filters_normals.dat, DIR/filters_baselines.dat,
-// DIR/filters.gp and (with gnuplot) DIR/filters.png. DIR defaults to the directory of this source file.
-// --quick: lambda / Rf in {2, 4, 10} and K in {2, 4} only (a smoke run; writes nothing unless --out).
+// Usage: bench_filters [--quick] [--csv-dir DIR]
+// Writes its tables as DIR/filters.*.csv (default: csv/ next to this source); make_reports.py writes filters.md
+// and filters.png from them (see README.md in this folder).
+// --quick: lambda / Rf in {2, 4, 10} and K in {2, 4} only (a smoke run; writes nothing unless --csv-dir).
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Monge_via_jet_fitting.h>
@@ -62,7 +62,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
-#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <limits>
@@ -361,30 +360,25 @@ static std::vector<Pipeline_row> figure12_pipeline(double lambda, double noise_s
 
 struct Options
 {
-  std::string out_dir = std::string(__FILE__).substr(0, std::string(__FILE__).find_last_of('/'));
-  bool quick = false, plot = true, out_given = false;
-  std::string command;
-  bool write() const { return !quick || out_given; } // --quick writes nothing unless --out
+  std::string out_dir = std::string(__FILE__).substr(0, std::string(__FILE__).find_last_of('/')) + "/csv";
+  bool quick = false, out_given = false;
+  bool write() const { return !quick || out_given; } // --quick writes nothing unless --csv-dir
 };
 
 /// Reads the options; false on a usage error.
 static bool parse_command_line(int argc, char** argv, Options& o)
 {
-  std::ostringstream cmd;
-  cmd << "bench_filters";
   for(int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
-    if(a == "--quick") { o.quick = true; cmd << " " << a; }
-    else if(a == "--no-plot") { o.plot = false; cmd << " " << a; }
-    else if(a == "--out" && i + 1 < argc) { o.out_dir = argv[++i]; o.out_given = true; cmd << " --out " << o.out_dir; }
+    if(a == "--quick") o.quick = true;
+    else if(a == "--csv-dir" && i + 1 < argc) { o.out_dir = argv[++i]; o.out_given = true; }
     else
     {
-      std::cerr << "usage: bench_filters [--quick] [--out DIR] [--no-plot]\n";
+      std::cerr << "usage: bench_filters [--quick] [--csv-dir DIR]\n";
       return false;
     }
   }
-  o.command = cmd.str();
   return true;
 }
 
@@ -525,10 +519,11 @@ static std::vector<Pipeline_case> figure12_cases()
   return pipeline;
 }
 
-/// Where the lead is lost: at equal detail gain, the Wavejet filter's noise gain against each baseline's.
-static std::string where_the_lead_is_lost(const Transfer& t)
+/// Where the lead is lost: at equal detail gain, the Wavejet filter's noise gain against each baseline's; one line per
+/// (K, gain) where a baseline has less noise.
+static std::vector<std::string> where_the_lead_is_lost(const Transfer& t)
 {
-  std::ostringstream lost;
+  std::vector<std::string> lost;
   for(std::size_t K : t.orders)
     for(std::size_t gi = 0; gi < 4; ++gi)
     {
@@ -544,201 +539,149 @@ static std::string where_the_lead_is_lost(const Transfer& t)
       }
       if(!where.empty())
       {
-        lost << "- K " << K << ", gain " << gains[gi] << ": lambda / Rf = ";
-        for(std::size_t i = 0; i < where.size(); ++i) lost << (i ? ", " : "") << where[i];
-        lost << "\n";
+        std::ostringstream line;
+        line << "K " << K << ", gain " << gains[gi] << ": lambda / Rf = ";
+        for(std::size_t i = 0; i < where.size(); ++i) line << (i ? ", " : "") << where[i];
+        lost.push_back(line.str());
       }
     }
-  return lost.str().empty() ? "- nowhere in the tables\n" : lost.str();
+  if(lost.empty()) lost.push_back("nowhere in the tables");
+  return lost;
 }
 
 // ---------------------------------------------------------------------------------------------
-// Data, plot and report
+// Tables, as CSV: make_reports.py writes filters.md and filters.png from them
 // ---------------------------------------------------------------------------------------------
 
-static void write_gains(const std::string& path, const std::string& header, const Transfer& t,
-                        const std::map<std::size_t, std::vector<std::vector<Gain_pair> > >& R)
+typedef std::map<std::size_t, std::vector<std::vector<Gain_pair> > > Gains_by_order;
+
+static std::string number(double v)
 {
-  std::ofstream f(path);
-  f << header << "\n";
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+/// The name of the i-th table of a kind: `base`, then base_2, base_3...
+static std::string nth(const std::string& base, std::size_t i)
+{
+  return i == 0 ? base : base + "_" + std::to_string(i + 1);
+}
+
+/// A grid (filters.*_grid.csv, the plot's data): per lambda / Rf, per K and gain, detail gain and noise gain.
+static wavejets_bench::Csv_table gain_grid(const Transfer& t, const Gains_by_order& R)
+{
+  std::vector<std::string> header{"lambda/Rf"};
+  for(std::size_t K : t.orders)
+    for(double g : gains)
+      for(const char* m : {" detail", " noise"}) header.push_back("K" + std::to_string(K) + " gain " + number(g) + m);
+  wavejets_bench::Csv_table table(header);
   for(std::size_t l = 0; l < t.lambdas.size(); ++l)
   {
-    f << t.lambdas[l];
+    std::vector<std::string> row{number(t.lambdas[l])};
     for(std::size_t K : t.orders)
-      for(std::size_t gi = 0; gi < 4; ++gi) f << " " << R.at(K)[l][gi].detail << " " << R.at(K)[l][gi].noise;
-    f << "\n";
-  }
-}
-
-static void write_data_files(const std::string& out_dir, const Transfer& t)
-{
-  write_gains(out_dir + "/filters_positions.dat",
-              "# lambda/Rf, then per K (2 4 6 8) and gain (-1 0 2 3): detail gain, noise gain", t, t.pos);
-  write_gains(out_dir + "/filters_normals.dat",
-              "# lambda/Rf, then per K (2 4 6 8) and gain (-1 0 2 3): detail gain, noise gain (relative to gain 1)", t, t.nrm);
-  {
-    std::ofstream f(out_dir + "/filters_baselines.dat");
-    f << "# lambda/Rf, then per K (2 4 6 8), gain 2: noise gain of WJ, H-USM and J-USM at WJ's detail gain,"
-         " then J-USM at g = 2: detail gain, noise gain\n";
-    for(std::size_t l = 0; l < t.lambdas.size(); ++l)
-    {
-      f << t.lambdas[l];
-      for(std::size_t K : t.orders)
-        f << " " << t.pos.at(K)[l][2].noise << " " << t.husm.at(K)[l][2].noise << " " << t.jusm.at(K)[l][2].noise
-          << " " << t.jusm_same.at(K)[l][2].detail << " " << t.jusm_same.at(K)[l][2].noise;
-      f << "\n";
-    }
-  }
-}
-
-static void write_plot_script(const std::string& out_dir)
-{
-  const std::string gp = out_dir + "/filters.gp";
-  // Column of (K index k, gain index g, detail 0 / noise 1) in filters_positions.dat / filters_normals.dat.
-  const auto col = [](int k, int g, int which) { return 2 + 8 * k + 2 * g + which; };
-  std::ofstream f(gp);
-  f << "# gnuplot script written by bench_filters; run from this directory: gnuplot filters.gp\n"
-    << "set terminal pngcairo size 1400,1000 font 'sans,11'\nset output 'filters.png'\n"
-    << "set multiplot layout 2,2\nset logscale x\nset xrange [1:20]\nset xtics (1,1.5,2,3,4,5,6,8,10,12,15,20)\n"
-    << "set xlabel 'detail wavelength lambda / Rf'\nset grid\nset key right top opaque box\n"
-    << "set title 'wavejet\\_enhance\\_positions: detail gain (gain 2: solid, 3: dashed, -1: dotted, 0: dash-dot)'\n"
-    << "set ylabel 'output / input amplitude'\nset yrange [-3:5]\n"
-    << "set arrow from 1,1 to 20,1 nohead lc rgb 'gray'\n"
-    << "plot ";
-  const char* colors[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd"};
-  const int gorder[] = {2, 3, 0, 1}; // gain index per dash type: 2 -> solid, 3 -> dashed, 0 -> dotted, 1 -> dash-dot
-  // One panel's plot command: per K index k from k_first and per variant v (dash type v + 1), the
-  // column column(k, v) of `dat`; the first variant of each K carries the legend.
-  const auto plot_lines = [&](const std::string& dat, int k_first, int variants, const std::function<int(int, int)>& column) {
-    bool first = true;
-    for(int k = k_first; k < 4; ++k)
-      for(int v = 0; v < variants; ++v)
+      for(std::size_t gi = 0; gi < 4; ++gi)
       {
-        f << (first ? "" : ", \\\n     ") << "'" << dat << "' u 1:" << column(k, v) << " w lp lw 2 pt 7 ps 0.6 dt "
-          << v + 1 << " lc rgb '" << colors[k] << "' " << (v == 0 ? "t 'K " + std::to_string(2 * k + 2) + "'" : "notitle");
-        first = false;
+        row.push_back(number(R.at(K)[l][gi].detail));
+        row.push_back(number(R.at(K)[l][gi].noise));
       }
-  };
-  plot_lines("filters_positions.dat", 0, 4, [&](int k, int v) { return col(k, gorder[v], 0); });
-  f << "\nunset arrow\nset title 'wavejet\\_enhance\\_positions: noise gain (residual RMS out / in; same lines)'\n"
-    << "set ylabel 'output / input noise'\nset logscale y\nset yrange [0.1:10]\nset ytics (0.1,0.2,0.5,1,1.25,2,5,10)\nplot ";
-  plot_lines("filters_positions.dat", 0, 4, [&](int k, int v) { return col(k, gorder[v], 1); });
-  f << "\nunset logscale y\nset ytics auto\nset title 'wavejet\\_enhance\\_normals: tilt detail gain, relative to gain 1 (same lines)'\n"
-    << "set ylabel 'tilt amplitude / gain-1 tilt amplitude'\nset yrange [-1.5:4]\nset arrow from 1,1 to 20,1 nohead lc rgb 'gray'\nplot ";
-  plot_lines("filters_normals.dat", 1, 4, [&](int k, int v) { return col(k, gorder[v], 0); }); // K 2: no a_{-1}, no effect
-  f << "\nunset arrow\nset title 'Noise gain at equal detail gain, gain 2 (WJ solid, H-USM dashed, J-USM dotted)'\n"
-    << "set ylabel 'output / input noise'\nset logscale y\nset yrange [0.3:100]\nset ytics (0.5,1,1.25,2,5,10,20,50,100)\nplot ";
-  plot_lines("filters_baselines.dat", 0, 3, [&](int k, int v) { return 2 + 5 * k + v; });
-  f << "\nunset multiplot\n";
+    table.add_row(row);
+  }
+  return table;
 }
 
-static void write_report_introduction(std::ostream& md, const Options& o, double total_seconds, const Transfer& t)
+/// filters.baselines_grid.csv: per lambda / Rf and K, gain 2: the noise gain of WJ, H-USM and J-USM at WJ's detail
+/// gain, then J-USM at g = 2: detail gain, noise gain.
+static wavejets_bench::Csv_table baseline_grid(const Transfer& t)
 {
-  md << "# Transfer functions of the Wavejet filters\n\n"
-     << "Written by `" << o.command << "` (source: `bench_filters.cpp`, which documents every definition) on "
-     << wavejets_bench::machine_description() << ", run time " << fmt(total_seconds, 3) << " s.\n\n"
-     << "Surface: the plane z = A sin(2 pi x / lambda) + Gaussian noise along z (sigma = A / 10), A = Rf / 20, on a "
-        "jittered grid of spacing Rf / 6 (about 113 points per neighborhood of radius Rf; the noise gains depend on "
-        "this density, see the check below); radius neighborhoods of "
-        "radius Rf for every method; measures on the points at least 1.5 Rf from the border.\n\n"
-     << "- **Positions:** least-squares fit of a sin(w x) + b cos(w x) + c (w = 2 pi / lambda) to the heights before "
-        "and after the filter (after: at the moved points' x). Detail gain = a_out / a_in (signed: < 0 is an inverted "
-        "detail), noise gain = RMS residual out / in. `wavejet_enhance_positions` with the clamp off (the gain "
-        "is linear once the fits are done: the gains -1, 0 and 3 are p1 + (gain - 1)(p2 - p1) from the runs at "
-        "1 and 2; largest difference from a direct gain-3 run: " << fmt(t.linearity) << " Rf).\n"
-     << "- **Normals:** the tilt pattern, i.e. the slope s_x = -n_x / n_z (exact: A w cos(w x)), fitted as "
-        "a cos(w x) + b sin(w x) + c; the residual also counts the slope s_y (the pattern has none). The normal filter "
-        "starts from the Wavejet's own normal (its gain 1, a denoised normal; the input normals only orient), so its "
-        "gains are relative to gain 1: detail gain = a(gain) / a(1), noise gain = RMS residual(gain) / "
-        "RMS residual(1). Column *kept* = a(1) / (A w): the share of the exact tilt the Wavejet normal keeps. "
-        "K = 2 has no a_{-1} term: the gain does nothing there (all ones).\n"
-     << "- **Baselines** (paper Figure 6), same neighborhoods, jets of degree K: **H-USM** moves p along CGAL's "
-        "jet normal by -c H (H = (k1 + k2) / 2 from `CGAL::Monge_via_jet_fitting`, degree K, Monge degree 2); "
-        "**J-USM** is p + (g - 1)(p - smooth(p)) with `CGAL::jet_smooth_point_set` (degree K). Both are linear in "
-        "c or g; *at equal detail gain* solves the factor that gives the Wavejet filter's detail gain for the same "
-        "lambda, K and gain. J-USM at g = gain is the comparison issue 13 quotes.\n\n";
-}
-
-static void write_check_table(std::ostream& md, const std::vector<Check>& checks)
-{
-  md << "## Check (plane, lambda = 4 Rf, noise A / 10, K = 4, gain 2, direct run, default clamp Rf / 2)\n\n"
-     << "The first row is the check (the benchmark's sampling, default evaluation radius); the others vary the "
-        "density and `evaluation_radius`. *Noise alone*: RMS height difference between the outputs for the noisy and "
-        "the noise-free sample (same grid) / sigma, i.e. the propagated noise without the filter's own deviation from a "
-        "sinusoid, which the residual (noise gain) also counts.\n\n"
-     << "| points per neighborhood | evaluation radius / Rf | Wavejet detail gain | Wavejet noise gain | noise alone | target | J-USM g = 2 detail | J-USM g = 2 noise |\n"
-     << "|---|---|---|---|---|---|---|---|\n";
-  for(const Check& c : checks)
-    md << "| ~" << fmt(c.neighbors, 2) << " | " << fmt(c.s, 2) << " | " << fmt(c.wj.detail) << " | " << fmt(c.wj.noise) << " | "
-       << fmt(c.noise_alone) << " | detail > 1.5, noise <= 1.25: **"
-       << (c.pass ? "pass" : "FAIL") << "** | " << fmt(c.jet.detail) << " | " << fmt(c.jet.noise) << " |\n";
-  md << "\n![Transfer functions](filters.png)\n\n";
-}
-
-static void write_gain_table(std::ostream& md, const std::string& title, const Transfer& t,
-                             const std::map<std::size_t, std::vector<std::vector<Gain_pair> > >& R, bool with_kept)
-{
-  md << "## " << title << "\n\n";
+  std::vector<std::string> header{"lambda/Rf"};
   for(std::size_t K : t.orders)
+    for(const char* c : {"WJ noise", "H-USM noise at WJ detail", "J-USM noise at WJ detail", "J-USM g2 detail",
+                         "J-USM g2 noise"})
+      header.push_back("K" + std::to_string(K) + " " + c);
+  wavejets_bench::Csv_table table(header);
+  for(std::size_t l = 0; l < t.lambdas.size(); ++l)
   {
-    md << "K = " << K << ":\n\n| lambda / Rf |";
-    if(with_kept) md << " kept |";
-    for(double g : gains) md << " gain " << g << " detail | gain " << g << " noise |";
-    md << "\n|---|";
-    if(with_kept) md << "---|";
-    for(std::size_t i = 0; i < 4; ++i) md << "---|---|";
-    md << "\n";
+    std::vector<std::string> row{number(t.lambdas[l])};
+    for(std::size_t K : t.orders)
+      for(double v : {t.pos.at(K)[l][2].noise, t.husm.at(K)[l][2].noise, t.jusm.at(K)[l][2].noise,
+                      t.jusm_same.at(K)[l][2].detail, t.jusm_same.at(K)[l][2].noise})
+        row.push_back(number(v));
+    table.add_row(row);
+  }
+  return table;
+}
+
+static wavejets_bench::Csv_table check_table(const std::vector<Check>& checks)
+{
+  wavejets_bench::Csv_table table({"points per neighborhood", "evaluation radius / Rf", "Wavejet detail gain",
+                                   "Wavejet noise gain", "noise alone", "target", "J-USM g = 2 detail",
+                                   "J-USM g = 2 noise"});
+  for(const Check& c : checks)
+    table.add_row({"~" + fmt(c.neighbors, 2), fmt(c.s, 2), fmt(c.wj.detail), fmt(c.wj.noise), fmt(c.noise_alone),
+                   std::string("detail > 1.5, noise <= 1.25: ") + (c.pass ? "pass" : "FAIL"), fmt(c.jet.detail),
+                   fmt(c.jet.noise)});
+  return table;
+}
+
+/// Per K, one table: per lambda / Rf (and, `with_kept`, the share of the tilt the gain-1 normal keeps), per gain:
+/// detail gain and noise gain.
+static void add_gain_tables(std::vector<std::pair<std::string, wavejets_bench::Csv_table> >& tables,
+                            const std::string& name, const Transfer& t, const Gains_by_order& R, bool with_kept)
+{
+  for(std::size_t i = 0; i < t.orders.size(); ++i)
+  {
+    const std::size_t K = t.orders[i];
+    std::vector<std::string> header{"lambda / Rf"};
+    if(with_kept) header.push_back("kept");
+    for(double g : gains)
+      for(const char* m : {" detail", " noise"}) header.push_back("gain " + number(g) + m);
+    wavejets_bench::Csv_table table(header);
     for(std::size_t l = 0; l < t.lambdas.size(); ++l)
     {
-      md << "| " << t.lambdas[l] << " |";
-      if(with_kept) md << " " << fmt(t.kept.at(K)[l]) << " |";
-      for(std::size_t gi = 0; gi < 4; ++gi) md << " " << fmt(R.at(K)[l][gi].detail) << " | " << fmt(R.at(K)[l][gi].noise) << " |";
-      md << "\n";
+      std::vector<std::string> row{number(t.lambdas[l])};
+      if(with_kept) row.push_back(fmt(t.kept.at(K)[l]));
+      for(std::size_t gi = 0; gi < 4; ++gi)
+      {
+        row.push_back(fmt(R.at(K)[l][gi].detail));
+        row.push_back(fmt(R.at(K)[l][gi].noise));
+      }
+      table.add_row(row);
     }
-    md << "\n";
+    tables.emplace_back(nth(name, i), table);
   }
 }
 
-/// Noise gains against unsharp masking at equal detail gain (positions).
-static void write_baseline_tables(std::ostream& md, const Transfer& t)
+/// Noise gains against unsharp masking at equal detail gain (positions): one table per K and gain 2, 3.
+static void add_baseline_tables(std::vector<std::pair<std::string, wavejets_bench::Csv_table> >& tables,
+                                const Transfer& t)
 {
-  md << "## Against unsharp masking at equal detail gain (positions)\n\n"
-     << "Noise gain of each method when its factor is set to give the Wavejet filter's detail gain (WJ detail). "
-        "n/a: the baseline's motion barely contains the pattern (no factor reaches it). Last two columns: J-USM at "
-        "g = the Wavejet gain.\n\n";
+  std::size_t i = 0;
   for(std::size_t K : t.orders)
     for(std::size_t gi : {std::size_t(2), std::size_t(3)})
     {
-      md << "K = " << K << ", gain " << gains[gi] << ":\n\n"
-         << "| lambda / Rf | WJ detail | WJ noise | H-USM noise | H-USM c / Rf^2 | J-USM noise | J-USM g | J-USM at g = " << gains[gi]
-         << ": detail | noise |\n|---|---|---|---|---|---|---|---|---|\n";
+      wavejets_bench::Csv_table table({"lambda / Rf", "WJ detail", "WJ noise", "H-USM noise", "H-USM c / Rf^2",
+                                       "J-USM noise", "J-USM g", "J-USM at g = " + number(gains[gi]) + ": detail",
+                                       "noise"});
       for(std::size_t l = 0; l < t.lambdas.size(); ++l)
       {
         const Matched& hb = t.husm.at(K)[l][gi];
         const Matched& jb = t.jusm.at(K)[l][gi];
-        md << "| " << t.lambdas[l] << " | " << fmt(t.pos.at(K)[l][gi].detail) << " | " << fmt(t.pos.at(K)[l][gi].noise) << " | "
-           << fmt(hb.noise) << " | " << fmt(hb.factor / (Rf * Rf)) << " | " << fmt(jb.noise) << " | " << fmt(1. + jb.factor) << " | "
-           << fmt(t.jusm_same.at(K)[l][gi].detail) << " | " << fmt(t.jusm_same.at(K)[l][gi].noise) << " |\n";
+        table.add_row({number(t.lambdas[l]), fmt(t.pos.at(K)[l][gi].detail), fmt(t.pos.at(K)[l][gi].noise),
+                       fmt(hb.noise), fmt(hb.factor / (Rf * Rf)), fmt(jb.noise), fmt(1. + jb.factor),
+                       fmt(t.jusm_same.at(K)[l][gi].detail), fmt(t.jusm_same.at(K)[l][gi].noise)});
       }
-      md << "\n";
+      tables.emplace_back(nth("filters.usm", i++), table);
     }
 }
 
-static void write_figure12_table(std::ostream& md, const std::vector<Pipeline_case>& pipeline)
+static wavejets_bench::Csv_table figure12_table(const std::vector<Pipeline_case>& pipeline)
 {
-  md << "## The Figure 12 pipeline on noisy input (`move_along_input_normals`)\n\n"
-     << "Plane, lambda = 4 Rf, K = 4, gain 2, default clamp, noise sigma = A / 2 and A (5 and 10 times the noise "
-        "above). *default*: `wavejet_enhance_positions` alone; the others first filter the normals with "
-        "`wavejet_enhance_normals` at gain 0 and then move each point along its filtered normal m by the filter's "
-        "height d: (c) is what `move_along_input_normals` does, (a) and (b) are the alternatives (computed from "
-        "(c)'s heights and the Wavejet normals n). Drift: RMS of the motions' y component (the direction the "
-        "pattern does not vary in), in units of the input noise sigma: the noise of the motion direction.\n\n"
-     << "| noise sigma | method | detail gain | noise gain | drift / sigma |\n|---|---|---|---|---|\n";
+  wavejets_bench::Csv_table table({"noise sigma", "method", "detail gain", "noise gain", "drift / sigma"});
   for(const Pipeline_case& c : pipeline)
     for(const Pipeline_row& r : c.rows)
-      md << "| " << fmt(c.noise, 2) << " A | " << r.name << " | " << fmt(r.g.detail) << " | " << fmt(r.g.noise) << " | "
-         << fmt(r.drift) << " |\n";
-  md << "\n";
+      table.add_row({fmt(c.noise, 2) + " A", r.name, fmt(r.g.detail), fmt(r.g.noise), fmt(r.drift)});
+  return table;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -756,29 +699,29 @@ int main(int argc, char** argv)
   const bool all_pass = checks[0].pass;
   print_checks(checks, t);
   const std::vector<Pipeline_case> pipeline = figure12_cases();
-  const std::string lost_text = where_the_lead_is_lost(t);
-  std::cout << "Baselines with less noise than the Wavejet filter at equal detail gain:\n" << lost_text;
+  const std::vector<std::string> lost = where_the_lead_is_lost(t);
+  std::cout << "Baselines with less noise than the Wavejet filter at equal detail gain:\n";
+  for(const std::string& line : lost) std::cout << "- " << line << "\n";
   total.stop();
   if(!o.write()) return all_pass ? 0 : 1;
 
-  write_data_files(o.out_dir, t);
-  write_plot_script(o.out_dir);
-  if(o.plot)
-  {
-    const std::string c = "cd '" + o.out_dir + "' && gnuplot filters.gp";
-    if(std::system(c.c_str()) != 0) std::cerr << "gnuplot failed or is missing: filters.png not written\n";
-  }
-
-  std::ofstream md(o.out_dir + "/filters.md");
-  write_report_introduction(md, o, total.time(), t);
-  write_check_table(md, checks);
-  write_gain_table(md, "wavejet_enhance_positions: detail gain and noise gain", t, t.pos, false);
-  write_gain_table(md, "wavejet_enhance_normals: tilt detail gain and noise gain, relative to gain 1", t, t.nrm, true);
-  write_baseline_tables(md, t);
-  md << "### Where the lead is lost\n\nConfigurations (all four gains) where a baseline has a lower noise gain than the "
-        "Wavejet filter at equal detail gain:\n\n" << lost_text << "\n";
-  write_figure12_table(md, pipeline);
-
-  std::cerr << "wrote " << o.out_dir << "/filters.md (" << fmt(total.time(), 3) << " s)\n";
+  std::vector<std::pair<std::string, wavejets_bench::Csv_table> > tables;
+  tables.emplace_back("filters.check", check_table(checks));
+  add_gain_tables(tables, "filters.positions", t, t.pos, false);
+  add_gain_tables(tables, "filters.normals", t, t.nrm, true);
+  add_baseline_tables(tables, t);
+  wavejets_bench::Csv_table lost_table({"configuration"});
+  for(const std::string& line : lost) lost_table.add_row({line});
+  tables.emplace_back("filters.lead_lost", lost_table);
+  tables.emplace_back("filters.figure12", figure12_table(pipeline));
+  tables.emplace_back("filters.positions_grid", gain_grid(t, t.pos));
+  tables.emplace_back("filters.normals_grid", gain_grid(t, t.nrm));
+  tables.emplace_back("filters.baselines_grid", baseline_grid(t));
+  wavejets_bench::Csv_table context = wavejets_bench::context_table();
+  context.add_row({"machine", wavejets_bench::machine_description()});
+  context.add_row({"run time (s)", fmt(total.time(), 3)});
+  context.add_row({"linearity (Rf)", fmt(t.linearity)});
+  tables.emplace_back("filters.context", context);
+  for(const auto& table : tables) table.second.write(o.out_dir, table.first);
   return all_pass ? 0 : 1;
 }

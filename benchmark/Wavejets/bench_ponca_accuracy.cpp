@@ -12,10 +12,10 @@
 // ASO (APSS differentiated in space: Weingarten map of the normal field), on the same k-nearest
 // neighborhoods, on analytic surfaces with exact curvature, with Gaussian position noise.
 //
-// Usage: bench_ponca_accuracy [--points N] [--eval M] [--out DIR] [--quick]
-//   N points per surface (default 20000), M evaluation points (default 1000), DIR output folder
-//   (default: the source folder of this file); writes DIR/accuracy_ponca.md and accuracy_ponca.dat
-//   (and accuracy_ponca.png when gnuplot is found). --quick: sphere and torus, noise {0, 0.5%}, k {20, 100}.
+// Usage: bench_ponca_accuracy [--points N] [--eval M] [--csv-dir DIR] [--quick]
+//   N points per surface (default 20000), M evaluation points (default 1000). Writes its tables as
+//   DIR/accuracy_ponca.*.csv (default: csv/ next to this source); make_reports.py writes accuracy_ponca.md and
+//   accuracy_ponca.png from them. --quick: sphere and torus, noise {0, 0.5%}, k {20, 100}.
 //
 // Ponca (https://github.com/poncateam/ponca, MPL-2.0) is used here only, never by the package. CMake
 // unpacks it from ../shared/deps/ponca-*.tar.xz or takes WAVEJETS_PONCA_DIR; without it this program
@@ -85,9 +85,8 @@ static const bool have_ponca = false;
 struct Options
 {
   std::size_t points = 20000, eval = 1000;
-  std::string out = WAVEJETS_BENCHMARK_SOURCE_DIR;
+  std::string csv_dir = std::string(__FILE__).substr(0, std::string(__FILE__).find_last_of('/')) + "/csv";
   bool quick = false;
-  std::string command = "bench_ponca_accuracy";
 };
 
 /// Per-point estimate.
@@ -371,22 +370,19 @@ static std::string fmt(double v, int prec = 3)
 /// Reads the options; false on a usage error.
 static bool parse_command_line(int argc, char** argv, Options& o)
 {
-  std::ostringstream cmd;
-  cmd << "bench_ponca_accuracy";
   for(int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
-    if(a == "--quick") { o.quick = true; cmd << " --quick"; }
-    else if(a == "--points" && i + 1 < argc) { o.points = std::strtoul(argv[++i], nullptr, 10); cmd << " --points " << argv[i]; }
-    else if(a == "--eval" && i + 1 < argc) { o.eval = std::strtoul(argv[++i], nullptr, 10); cmd << " --eval " << argv[i]; }
-    else if(a == "--out" && i + 1 < argc) { o.out = argv[++i]; }
+    if(a == "--quick") o.quick = true;
+    else if(a == "--points" && i + 1 < argc) o.points = std::strtoul(argv[++i], nullptr, 10);
+    else if(a == "--eval" && i + 1 < argc) o.eval = std::strtoul(argv[++i], nullptr, 10);
+    else if(a == "--csv-dir" && i + 1 < argc) o.csv_dir = argv[++i];
     else
     {
-      std::cerr << "usage: bench_ponca_accuracy [--points N] [--eval M] [--out DIR] [--quick]\n";
+      std::cerr << "usage: bench_ponca_accuracy [--points N] [--eval M] [--csv-dir DIR] [--quick]\n";
       return false;
     }
   }
-  o.command = cmd.str();
   return true;
 }
 
@@ -464,9 +460,9 @@ static double one_call_pipeline_difference(const Options& o, const std::vector<s
 }
 
 /// Speed of the Hermite fit: wavejet_estimate_curvatures, Sequential_tag, torus, noise 0.25%, k = 50 (a table).
-static std::string hermite_speed_table(const Options& o)
+static wavejets_bench::Csv_table hermite_speed_table(const Options& o)
 {
-  std::ostringstream speed;
+  wavejets_bench::Csv_table speed({"K", "plain fit (s)", "Hermite fit, normals given (s)", "ratio", "one-call pipeline (s)"});
   WB::Torus T;
   Dataset d = make_dataset(T, 2, o, 0.25);
   std::vector<std::size_t> idx(d.points.size());
@@ -475,7 +471,6 @@ static std::string hermite_speed_table(const Options& o)
   const std::vector<WB::V3> wn = wavejet_normals(d, 50, 2);
   for(std::size_t i = 0; i < wn.size(); ++i) normals[i] = Vector(wn[i].x(), wn[i].y(), wn[i].z());
   std::vector<double> H(d.points.size());
-  speed << "| K | plain fit (s) | Hermite fit, normals given (s) | ratio | one-call pipeline (s) |\n| --- | --- | --- | --- | --- |\n";
   for(std::size_t K = 2; K <= 4; K += 2)
   {
     auto time_it = [&](auto np) {
@@ -501,17 +496,15 @@ static std::string hermite_speed_table(const Options& o)
         .mean_curvature_map(CGAL::make_property_map(H)).point_map(CGAL::make_property_map(d.points)));
       pipeline = std::min(pipeline, t.time());
     }
-    speed << "| " << K << " | " << fmt(plain) << " | " << fmt(hermite) << " | " << fmt(hermite / plain, 3) << " | "
-          << fmt(pipeline) << " |\n";
+    speed.add_row({std::to_string(K), fmt(plain), fmt(hermite), fmt(hermite / plain, 3), fmt(pipeline)});
   }
-  return speed.str();
+  return speed;
 }
 
 /// Outliers: sphere, 5% outliers (moved by up to 2.5% of the diagonal), K = 4, radius 0.2, Tukey IRLS (3 passes).
 struct Outlier_errors
 {
   double plain = 0., robust = 0., hermite = 0.;
-  std::string table;
 };
 
 static Outlier_errors outlier_experiment(const Options& o)
@@ -537,106 +530,76 @@ static Outlier_errors outlier_experiment(const Options& o)
   r.plain = error(0, false);
   r.robust = error(3, false);
   r.hermite = error(3, true);
-  std::ostringstream outliers;
-  outliers << "| estimator | H RMSE |\n| --- | --- |\n| WJ-4 | " << fmt(r.plain) << " |\n| WJ-4, robust_iterations(3) | "
-           << fmt(r.robust) << " |\n| WJH-4 (one-call Hermite pipeline), robust_iterations(3) | " << fmt(r.hermite) << " |\n";
-  r.table = outliers.str();
   return r;
 }
 
 // ---------------------------------------------------------------------------------------------
-// Report
+// Tables, as CSV: make_reports.py writes accuracy_ponca.md and accuracy_ponca.png from them
 
-static void write_introduction(std::ostream& md, const Options& o, double table_seconds, double pipeline_difference)
+typedef std::vector<std::pair<std::string, wavejets_bench::Csv_table> > Tables;
+
+static std::vector<std::string> header(const std::vector<int>& cols, const std::string& first)
 {
-  md << "# Accuracy against Ponca (APSS, ASO) and CGAL jets\n\n"
-     << "Written by `build/<folder>/benchmark/Wavejets/" << o.command << "` (" << o.points << " points per surface, "
-     << o.eval << " evaluation points at least 0.3 from a border) on " << WB::machine_description(false) << "; run time "
-     << fmt(table_seconds, 3) << " s for the tables.\n\n"
-     << "Every estimator sees the same k-nearest neighborhoods (the package's neighbor query; the query point "
-        "first, then its k neighbors). Gaussian noise of the given fraction of the bounding-box diagonal on every "
-        "coordinate. Errors against the exact curvature of the surface point each sample came from. "
-        "Relative RMSE of H: sqrt(sum (H - H*)^2 / sum H*^2); the other errors are RMSE (curvature in units of 1/length, "
-        "surfaces in [-1, 1]^3) and the mean normal angle in degrees.\n\n"
-     << "| column | what |\n| --- | --- |\n"
-     << "| CGAL-D | `Monge_via_jet_fitting`, degree D, Monge degree 2 |\n"
-     << "| WJ-K | `wavejet_estimate_curvatures` defaults at order K (first fit, PCA frame: CGAL's least-squares problem) |\n"
-     << "| WJH-K | Hermite fit, `use_neighbor_normals(true)`, weight 1: heights and the slopes of the neighbors' Wavejet "
-        "normals (`wavejet_estimate_normals`, order K, same k), i.e. the one-call pipeline `wavejet_estimate_curvatures("
-        "points, k, order(K).use_neighbor_normals(true))` without a normal map (checked: largest relative difference of |H| "
-        "between the two on one configuration: " << fmt(pipeline_difference, 2) << ") |\n"
-     << "| WJH-2-pca | Hermite fit, K = 2, with the PCA normals APSS gets |\n"
-     << "| WJH-2-w3, -w10 | Hermite fit, K = 2, `neighbor_normal_weight` 3 and 10 instead of 1 |\n"
-     << "| -c | the same with `compact_weights(true)`: rows weighted by (1 - (d/Rf)^2)^2 |\n"
-     << "| APSS, APSS-s | Ponca `OrientedSphereFit` (+`GLSParam` for kappa), constant / smooth ((1 - (d/t)^2)^2) weights, t = "
-        "distance to the farthest neighbor; input normals: PCA of each point's k neighbors, oriented by the exact normal "
-        "(a perfect orientation step). k1 = k2 = H: a sphere has one curvature |\n"
-     << "| ASO-s | Ponca's algebraic shape operator: APSS with smooth weights differentiated in space "
-        "(`OrientedSphereDer`, `MlsSphereFitDer`, `NormalDerivativeWeingartenEstimator`) |\n\n";
-  if(!have_ponca) md << "**Ponca was not found when this program was configured: its columns are missing.**\n\n";
+  std::vector<std::string> h{first};
+  for(int e : cols) h.push_back(estimator_name[e]);
+  return h;
 }
 
-static std::string table_header(const std::vector<int>& cols, const std::string& first)
+static std::string noise_and_k(double noise, unsigned int k)
 {
-  std::string h = "| " + first + " |", sep = "| --- |";
-  for(int e : cols) { h += std::string(" ") + estimator_name[e] + " |"; sep += " --- |"; }
-  return h + "\n" + sep + "\n";
+  std::ostringstream s;
+  s << noise << "%, " << k;
+  return s.str();
 }
 
-static void write_relative_H_tables(std::ostream& md, const std::vector<std::unique_ptr<WB::Surface> >& surfaces, const Grid& g)
+/// Per surface: the relative RMSE of H of the main estimators, per noise and k ('*': some points failed).
+static void add_relative_H_tables(Tables& tables, const std::vector<std::unique_ptr<WB::Surface> >& surfaces,
+                                  const Grid& g)
 {
-  const std::vector<int> main_cols = {CGAL2, WJ2, WJ3, WJ4, WJH2, WJH3, WJH4, WJH2P, WJH2_W3, WJH2_W10, APSS_C, APSS_S, ASO_S};
-  md << "## Relative RMSE of the mean curvature H\n\nBest of each row in bold.\n\n";
+  const std::vector<int> main_cols = {CGAL2, WJ2, WJ3, WJ4, WJH2, WJH3, WJH4, WJH2P, WJH2_W3, WJH2_W10, APSS_C, APSS_S,
+                                      ASO_S};
   for(const auto& S : surfaces)
   {
-    md << "### " << S->name() << "\n\n" << table_header(main_cols, "noise, k");
+    wavejets_bench::Csv_table table(header(main_cols, "noise, k"));
     for(double noise : g.noises)
       for(unsigned int k : g.ks)
       {
         const std::vector<Result>& row = row_of(g, S->name(), noise, k);
-        double best = 1e300;
-        for(int e : main_cols) if(row[e].present) best = std::min(best, row[e].relH);
-        md << "| " << noise << "%, " << k << " |";
+        std::vector<std::string> cells{noise_and_k(noise, k)};
         for(int e : main_cols)
-        {
-          if(!row[e].present) { md << " - |"; continue; }
-          const bool b = row[e].relH == best;
-          md << " " << (b ? "**" : "") << fmt(row[e].relH) << (b ? "**" : "") << (row[e].failed ? "*" : "") << " |";
-        }
-        md << "\n";
+          cells.push_back(row[e].present ? fmt(row[e].relH) + (row[e].failed ? "*" : "") : std::string("-"));
+        table.add_row(cells);
       }
-    md << "\n";
+    tables.emplace_back("accuracy_ponca.h_rmse_" + S->name(), table);
   }
 }
 
-static void write_all_errors(std::ostream& md, const Options& o, const std::vector<std::unique_ptr<WB::Surface> >& surfaces,
-                             const Grid& g)
+/// Per surface: every error of every estimator at one noise level and k (0.25% and 50; --quick: 0.5% and 20).
+static void add_all_errors(Tables& tables, const Options& o, const std::vector<std::unique_ptr<WB::Surface> >& surfaces,
+                           const Grid& g)
 {
   const double ref_noise = o.quick ? 0.5 : 0.25;
   const unsigned int ref_k = o.quick ? 20 : 50;
-  md << "## All errors at noise " << ref_noise << "%, k = " << ref_k << "\n\n";
   for(const auto& S : surfaces)
   {
-    md << "### " << S->name() << "\n\n| estimator | rel. H | H | K_G | k1 | k2 | normal (deg) | failed |\n"
-       << "| --- | --- | --- | --- | --- | --- | --- | --- |\n";
+    wavejets_bench::Csv_table table({"estimator", "rel. H", "H", "K_G", "k1", "k2", "normal (deg)", "failed"});
     const std::vector<Result>& row = row_of(g, S->name(), ref_noise, ref_k);
     for(int e = 0; e < NUM_ESTIMATORS; ++e)
       if(row[e].present)
-        md << "| " << estimator_name[e] << " | " << fmt(row[e].relH) << " | " << fmt(row[e].H) << " | " << fmt(row[e].K) << " | "
-           << fmt(row[e].k1) << " | " << fmt(row[e].k2) << " | " << fmt(row[e].angle) << " | " << row[e].failed << " |\n";
-    md << "\n";
+        table.add_row({estimator_name[e], fmt(row[e].relH), fmt(row[e].H), fmt(row[e].K), fmt(row[e].k1), fmt(row[e].k2),
+                       fmt(row[e].angle), std::to_string(row[e].failed)});
+    tables.emplace_back("accuracy_ponca.all_errors_" + S->name(), table);
   }
 }
 
-static void write_weights_table(std::ostream& md, const std::vector<std::unique_ptr<WB::Surface> >& surfaces, const Grid& g)
+/// Compact against constant weights: geometric mean over the surfaces of the ratio of the relative H RMSE.
+static wavejets_bench::Csv_table weights_table(const std::vector<std::unique_ptr<WB::Surface> >& surfaces, const Grid& g)
 {
-  md << "## Weights: compact (1 - (d/Rf)^2)^2 against constant\n\nRatio of the relative H RMSE with compact weights to "
-        "that with constant weights, mean over the surfaces (geometric mean; below 1: the compact weights help).\n\n"
-     << "| noise, k | WJ-2 | WJ-4 | WJH-2 | WJH-4 | APSS |\n| --- | --- | --- | --- | --- | --- |\n";
+  wavejets_bench::Csv_table table({"noise, k", "WJ-2", "WJ-4", "WJH-2", "WJH-4", "APSS"});
   for(double noise : g.noises)
     for(unsigned int k : g.ks)
     {
-      md << "| " << noise << "%, " << k << " |";
+      std::vector<std::string> cells{noise_and_k(noise, k)};
       const int pairs[5][2] = {{WJ2C, WJ2}, {WJ4C, WJ4}, {WJH2C, WJH2}, {WJH4C, WJH4}, {APSS_S, APSS_C}};
       for(const auto& p : pairs)
       {
@@ -649,49 +612,46 @@ static void write_weights_table(std::ostream& md, const std::vector<std::unique_
           log_sum += std::log(row[p[0]].relH / row[p[1]].relH);
           ++n;
         }
-        md << " " << (n ? fmt(std::exp(log_sum / n)) : std::string("-")) << " |";
+        cells.push_back(n ? fmt(std::exp(log_sum / n)) : std::string("-"));
       }
-      md << "\n";
+      table.add_row(cells);
     }
+  return table;
 }
 
 /// Scale of the estimates (shrinkage toward 0) and the errors once it is undone: WJH-2-w10 against APSS.
-static void write_shrinkage_table(std::ostream& md, const Grid& g)
+static wavejets_bench::Csv_table shrinkage_table(const Grid& g)
 {
-  md << "\n## Shrinkage: why APSS wins on small noisy neighborhoods\n\n"
-        "scale = sum H H* / sum H*^2, the least-squares factor of the estimate on the truth (1: unbiased; below 1: the "
-        "estimates are shrunk toward 0). 'rescaled' = relative RMSE of H / scale, the error once the shrinkage is undone. "
-        "APSS regresses the neighbors' normals on their positions, which carry the noise too (errors in variables), and "
-        "this shrinks its curvature toward 0 by a factor that grows with the noise and falls with k. A shrunk estimate has "
-        "a smaller spread: where the error is mostly spread (small k, high noise), shrinking lowers the RMSE at the price "
-        "of a bias. The last column compares the two estimators once each one's scale is undone.\n\n"
-     << "| surface, noise, k | APSS scale | WJH-2-w10 scale | rel. H RMSE WJH-2-w10 / APSS | rescaled WJH-2-w10 / APSS |\n"
-        "| --- | --- | --- | --- | --- |\n";
+  wavejets_bench::Csv_table table({"surface, noise, k", "APSS scale", "WJH-2-w10 scale", "rel. H RMSE WJH-2-w10 / APSS",
+             "rescaled WJH-2-w10 / APSS"});
   for(const std::string s : {"torus", "ellipsoid", "sphere"})
     for(double n : {0.25, 0.5})
       for(unsigned int k : g.ks)
       {
         const std::vector<Result>& row = row_of(g, s, n, k);
         if(!row[APSS_C].present) continue;
-        md << "| " << s << ", " << n << "%, " << k << " | " << fmt(row[APSS_C].scale) << " | " << fmt(row[WJH2_W10].scale)
-           << " | " << fmt(row[WJH2_W10].relH / row[APSS_C].relH) << " | "
-           << fmt(row[WJH2_W10].relH_rescaled / row[APSS_C].relH_rescaled) << " |\n";
+        table.add_row({s + ", " + noise_and_k(n, k), fmt(row[APSS_C].scale), fmt(row[WJH2_W10].scale),
+                       fmt(row[WJH2_W10].relH / row[APSS_C].relH),
+                       fmt(row[WJH2_W10].relH_rescaled / row[APSS_C].relH_rescaled)});
       }
+  return table;
 }
 
-/// Targets of the accuracy issue, checked on the tables above.
-static void write_targets(std::ostream& md, const std::vector<std::unique_ptr<WB::Surface> >& surfaces, const Grid& g,
-                          const Outlier_errors& outl)
+/// The targets, checked on the tables above: noisy (WJH-2-w10 against APSS), clean (Hermite against plain, APSS
+/// against Hermite), k1 and k2 (CGAL's best jet against WJH-2).
+static void add_targets(Tables& tables, const std::vector<std::unique_ptr<WB::Surface> >& surfaces, const Grid& g)
 {
   auto rel = [&](const std::string& s, double n, unsigned int k, int e) { return row_of(g, s, n, k)[e].relH; };
-  md << "\n## Targets\n\n**Noisy (0.25% and 0.5%), WJH-2-w10 (`order(2).use_neighbor_normals(true).neighbor_normal_weight(10)`, "
-        "the best documented setting) against APSS**: ratio of the relative H RMSE (below 1: WJH-2-w10 more precise), and "
-        "the best Wavejet column of the row.\n\n"
-     << "| surface, noise | k = 20 | k = 50 | k = 100 | k = 200 | target |\n| --- | --- | --- | --- | --- | --- |\n";
+  std::vector<std::string> noisy_header{"surface, noise"};
+  for(unsigned int k : g.ks) noisy_header.push_back("k = " + std::to_string(k));
+  noisy_header.push_back("target");
+  wavejets_bench::Csv_table noisy(noisy_header);
   for(const std::string s : {"torus", "ellipsoid", "sphere"})
     for(double n : {0.25, 0.5})
     {
-      md << "| " << s << ", " << n << "% |";
+      std::ostringstream label;
+      label << s << ", " << n << "%";
+      std::vector<std::string> cells{label.str()};
       bool ok = true;
       const double limit = s == "sphere" ? 1.1 : 1.;
       for(unsigned int k : g.ks)
@@ -700,46 +660,51 @@ static void write_targets(std::ostream& md, const std::vector<std::unique_ptr<WB
         ok = ok && r < limit;
         int best = WJ2;
         for(int e = WJ2; e <= WJH4C; ++e) if(rel(s, n, k, e) < rel(s, n, k, best)) best = e;
-        md << " " << fmt(r) << " (best " << estimator_name[best] << ": " << fmt(rel(s, n, k, best) / rel(s, n, k, APSS_C)) << ") |";
+        cells.push_back(fmt(r) + " (best " + estimator_name[best] + ": " +
+                        fmt(rel(s, n, k, best) / rel(s, n, k, APSS_C)) + ")");
       }
-      md << " " << (s == "sphere" ? "< 1.1" : "< 1") << ": " << (ok ? "holds" : "**fails**") << " |\n";
+      cells.push_back(std::string(s == "sphere" ? "< 1.1" : "< 1") + ": " + (ok ? "holds" : "fails"));
+      noisy.add_row(cells);
     }
-  md << "\n**Clean data**: Hermite against plain at the same K (ratio of relative H RMSE, target <= 1.5), and APSS against "
-        "the Hermite fit at K = 4 (target >= 5).\n\n| surface | k | WJH-2/WJ-2 | WJH-3/WJ-3 | WJH-4/WJ-4 | APSS/WJH-4 |\n"
-        "| --- | --- | --- | --- | --- | --- |\n";
+  tables.emplace_back("accuracy_ponca.targets", noisy);
+  wavejets_bench::Csv_table clean({"surface", "k", "WJH-2/WJ-2", "WJH-3/WJ-3", "WJH-4/WJ-4", "APSS/WJH-4"});
   for(const std::string s : {"torus", "ellipsoid", "sphere", "goursat", "cylinder"})
     for(unsigned int k : g.ks)
-      md << "| " << s << " | " << k << " | " << fmt(rel(s, 0., k, WJH2) / rel(s, 0., k, WJ2)) << " | "
-         << fmt(rel(s, 0., k, WJH3) / rel(s, 0., k, WJ3)) << " | " << fmt(rel(s, 0., k, WJH4) / rel(s, 0., k, WJ4)) << " | "
-         << fmt(rel(s, 0., k, APSS_C) / rel(s, 0., k, WJH4)) << " |\n";
-  md << "\n**k1 and k2 at noise 0.25%, k = 50**: RMSE of the best CGAL jet (degree 2 to 4) divided by that of WJH-2 "
-        "(target >= 2).\n\n| surface | k1 | k2 |\n| --- | --- | --- |\n";
+      clean.add_row({s, std::to_string(k), fmt(rel(s, 0., k, WJH2) / rel(s, 0., k, WJ2)),
+                     fmt(rel(s, 0., k, WJH3) / rel(s, 0., k, WJ3)), fmt(rel(s, 0., k, WJH4) / rel(s, 0., k, WJ4)),
+                     fmt(rel(s, 0., k, APSS_C) / rel(s, 0., k, WJH4))});
+  tables.emplace_back("accuracy_ponca.targets_2", clean);
+  wavejets_bench::Csv_table principal({"surface", "k1", "k2"});
   for(const auto& S : surfaces)
   {
     const std::vector<Result>& row = row_of(g, S->name(), 0.25, 50);
-    const double c1 = std::min({row[CGAL2].k1, row[CGAL3].k1, row[CGAL4].k1}), c2 = std::min({row[CGAL2].k2, row[CGAL3].k2, row[CGAL4].k2});
-    md << "| " << S->name() << " | " << fmt(c1 / row[WJH2].k1) << " | " << fmt(c2 / row[WJH2].k2) << " |\n";
+    const double c1 = std::min({row[CGAL2].k1, row[CGAL3].k1, row[CGAL4].k1});
+    const double c2 = std::min({row[CGAL2].k2, row[CGAL3].k2, row[CGAL4].k2});
+    principal.add_row({S->name(), fmt(c1 / row[WJH2].k1), fmt(c2 / row[WJH2].k2)});
   }
-  md << "\n**Outliers**: robust Hermite " << fmt(outl.hermite) << " against robust plain " << fmt(outl.robust)
-     << " and plain " << fmt(outl.plain) << " (section Outliers). **Speed**: see the ratio column of the speed table.\n";
+  tables.emplace_back("accuracy_ponca.targets_3", principal);
 }
 
-/// accuracy_ponca.dat: relative H RMSE against k, each surface and noise level.
-static void write_dat(const std::string& dat_path, const std::vector<std::unique_ptr<WB::Surface> >& surfaces, const Grid& g)
+/// The relative H RMSE of every estimator against k, each surface and noise level (-1: not run); the plot's data.
+static wavejets_bench::Csv_table relative_H_grid(const std::vector<std::unique_ptr<WB::Surface> >& surfaces, const Grid& g)
 {
-  std::ofstream dat(dat_path);
-  dat << "# surface noise k";
-  for(int e = 0; e < NUM_ESTIMATORS; ++e) dat << " " << estimator_name[e];
-  dat << "\n";
+  std::vector<std::string> h{"surface", "noise", "k"};
+  for(int e = 0; e < NUM_ESTIMATORS; ++e) h.push_back(estimator_name[e]);
+  wavejets_bench::Csv_table table(h);
+  auto number = [](double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+  };
   for(const auto& S : surfaces)
     for(double noise : g.noises)
       for(unsigned int k : g.ks)
       {
-        dat << S->name() << " " << noise << " " << k;
-        for(const Result& r : row_of(g, S->name(), noise, k)) dat << " " << (r.present ? r.relH : -1.);
-        dat << "\n";
+        std::vector<std::string> cells{S->name(), number(noise), std::to_string(k)};
+        for(const Result& r : row_of(g, S->name(), noise, k)) cells.push_back(number(r.present ? r.relH : -1.));
+        table.add_row(cells);
       }
-  dat.close();
+  return table;
 }
 
 int main(int argc, char** argv)
@@ -756,35 +721,37 @@ int main(int argc, char** argv)
   const Grid g = run_grid(o, surfaces, total);
   total.stop();
   const double pipeline_difference = one_call_pipeline_difference(o, surfaces);
-  const std::string speed = hermite_speed_table(o);
+  const wavejets_bench::Csv_table speed = hermite_speed_table(o);
   const Outlier_errors outl = outlier_experiment(o);
 
-  std::ostringstream md;
-  write_introduction(md, o, total.time(), pipeline_difference);
-  write_relative_H_tables(md, surfaces, g);
-  write_all_errors(md, o, surfaces, g);
-  write_weights_table(md, surfaces, g);
-  md << "\n## Outliers\n\nUnit sphere, " << o.points << " points, 5% outliers (moved uniformly in a ball of radius 2.5% of the "
-        "diagonal, not evaluated), K = 4, `neighbor_radius(0.2)`, no normal map (|H| against 1), all inliers evaluated.\n\n"
-     << outl.table;
-  md << "\n## Speed of the Hermite fit\n\n`wavejet_estimate_curvatures<Sequential_tag>`, torus, " << o.points
-     << " points, noise 0.25%, k = 50, best of 3; the Hermite fit with the neighbors' normals given as the normal map, "
-        "and the one-call pipeline (no normal map: normals estimated first, then the Hermite fit).\n\n"
-     << speed << "\n";
-
+  Tables tables;
+  add_relative_H_tables(tables, surfaces, g);
+  add_all_errors(tables, o, surfaces, g);
+  tables.emplace_back("accuracy_ponca.weights", weights_table(surfaces, g));
+  wavejets_bench::Csv_table outliers({"estimator", "H RMSE"});
+  outliers.add_row({"WJ-4", fmt(outl.plain)});
+  outliers.add_row({"WJ-4, robust_iterations(3)", fmt(outl.robust)});
+  outliers.add_row({"WJH-4 (one-call Hermite pipeline), robust_iterations(3)", fmt(outl.hermite)});
+  tables.emplace_back("accuracy_ponca.outliers", outliers);
+  tables.emplace_back("accuracy_ponca.hermite_speed", speed);
   if(!o.quick && have_ponca)
   {
-    write_shrinkage_table(md, g);
-    write_targets(md, surfaces, g, outl);
+    tables.emplace_back("accuracy_ponca.shrinkage", shrinkage_table(g));
+    add_targets(tables, surfaces, g);
   }
-  write_dat(o.out + "/accuracy_ponca.dat", surfaces, g);
-  md << "Plot (`accuracy_ponca.png`, from `accuracy_ponca.dat` with `accuracy_ponca.gp`): relative H RMSE against k.\n\n"
-        "![relative H RMSE against k](accuracy_ponca.png)\n";
-  std::ofstream(o.out + "/accuracy_ponca.md") << md.str();
-  std::cout << md.str();
-  // The script (kept in the source folder) reads accuracy_ponca.dat and writes the picture in the working folder.
-  const std::string plot = "cd '" + o.out + "' && gnuplot '" + std::string(WAVEJETS_BENCHMARK_SOURCE_DIR) + "/accuracy_ponca.gp'";
-  if(std::system("command -v gnuplot >/dev/null 2>&1") != 0 || std::system(plot.c_str()) != 0)
-    std::cerr << "no plot: gnuplot not found or failed (" << plot << ")\n";
+  tables.emplace_back("accuracy_ponca.h_rmse_grid", relative_H_grid(surfaces, g));
+  wavejets_bench::Csv_table context = wavejets_bench::context_table();
+  context.add_row({"machine", WB::machine_description(false)});
+  context.add_row({"run time (s)", fmt(total.time(), 3)});
+  context.add_row({"points", std::to_string(o.points)});
+  context.add_row({"evaluation points", std::to_string(o.eval)});
+  context.add_row({"one-call pipeline difference", fmt(pipeline_difference, 2)});
+  if(!have_ponca) context.add_row({"Ponca", "not found when this program was configured: its columns are missing"});
+  tables.emplace_back("accuracy_ponca.context", context);
+  for(const auto& t : tables)
+  {
+    std::cout << "\n" << t.first << "\n" << t.second.str();
+    t.second.write(o.csv_dir, t.first);
+  }
   return 0;
 }

@@ -3,7 +3,7 @@
 // Samples N points uniformly on examples/Wavejets/data/bunny00.off (fixed seed) and times, in one
 // process, with CGAL::Real_timer:
 //   * the k-NN search alone (the package's internal Neighbor_query: tree build + N queries), the
-//     floor of any neighborhood method;
+//     floor of any neighborhood method, and CGAL's Orthogonal_k_neighbor_search for the same lists;
 //   * CGAL::jet_estimate_normals (degree 2/k 18, 4/k 32, 6/k 96) against
 //     CGAL::wavejet_estimate_normals at the same order and k;
 //   * CGAL::wavejet_estimate_curvatures and CGAL::wavejet_enhance_positions (K = 6);
@@ -13,6 +13,7 @@
 //     systems (why the hand-written solver exists);
 // with Sequential_tag and Parallel_tag. A scaling mode re-runs this executable once per
 // configuration (N, K, threads) so that each peak memory figure belongs to one run.
+// It writes its tables as CSV (csv/results.*.csv); make_reports.py writes results.md and results.png from them.
 // See README.md in this directory.
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -30,7 +31,8 @@
 
 #include <Eigen/Dense>
 
-#include "knn_alternatives.h"
+#include "bench_common.h"
+#include "cgal_k_neighbor_search.h"
 #include "ponca_types.h"
 
 #ifdef CGAL_LINKED_WITH_TBB
@@ -202,67 +204,29 @@ static double time_knn(const Points& points, unsigned int k)
   return t.time();
 }
 
-/// The k-NN lists of every point by one of the alternatives of knn_alternatives.h, sequentially in
-/// the kd-tree's leaf order (the drivers' order), build included; `mismatches`: the points whose list
-/// differs from Neighbor_query's.
-enum class Knn_alternative { CGAL_K_NEIGHBOR_SEARCH, BALL_FROM_PREVIOUS, UNIFORM_GRID };
-
-static double time_knn_alternative(const Points& points, unsigned int k, Knn_alternative which, std::size_t& mismatches)
+/// The k-NN lists of every point by CGAL's Orthogonal_k_neighbor_search (cgal_k_neighbor_search.h), sequentially
+/// in its kd-tree's leaf order, build included; `mismatches`: the points whose list differs from Neighbor_query's.
+static double time_cgal_knn(const Points& points, unsigned int k, std::size_t& mismatches)
 {
   std::vector<WI::Neighbor_query::Point> pts;
   for(const auto& p : points) pts.emplace_back(p.first.x(), p.first.y(), p.first.z());
   const std::vector<unsigned char> finite(points.size(), 1);
   const WI::Neighbor_query query(pts, finite);
-  const std::vector<std::size_t> order = query.processing_order();
   std::vector<std::size_t> reference(points.size() * k), nb;
   WI::Neighbor_query::Scratch scratch;
-  // Cell of the grid: the mean k-th neighbor distance of about 100 points (every step-th).
-  const std::size_t step = (std::max<std::size_t>)(points.size() / 100, 1);
-  double sum_kth = 0.;
-  std::size_t sampled = 0;
   for(std::size_t i = 0; i < points.size(); ++i)
   {
     query.neighbors(i, k, 0., nb, scratch);
     std::copy(nb.begin(), nb.end(), reference.begin() + i * k);
-    if(i % step == 0 && !nb.empty())
-    {
-      sum_kth += std::sqrt(CGAL::squared_distance(pts[i], pts[nb.back()]));
-      ++sampled;
-    }
   }
   mismatches = 0;
-  double radius = 0.;
-  auto check = [&](std::size_t i) {
-    mismatches += nb.size() != k || !std::equal(nb.begin(), nb.end(), reference.begin() + i * k);
-  };
   CGAL::Real_timer t;
   t.start();
-  if(which == Knn_alternative::CGAL_K_NEIGHBOR_SEARCH)
+  const wavejets_bench::Cgal_k_neighbor_search cgal_search(pts);
+  for(std::size_t i : cgal_search.leaf_order())
   {
-    const wavejets_bench::Cgal_k_neighbor_search alternative(pts);
-    for(std::size_t i : alternative.leaf_order())
-    {
-      alternative.neighbors(i, k, nb, scratch.candidates);
-      check(i);
-    }
-  }
-  else if(which == Knn_alternative::BALL_FROM_PREVIOUS)
-  {
-    const wavejets_bench::Ball_from_previous alternative(pts);
-    for(std::size_t i : alternative.leaf_order())
-    {
-      alternative.neighbors(i, k, radius, nb, scratch.candidates);
-      check(i);
-    }
-  }
-  else
-  {
-    const wavejets_bench::Uniform_grid alternative(pts, sum_kth / double((std::max<std::size_t>)(sampled, 1)));
-    for(std::size_t i : order)
-    {
-      alternative.neighbors(i, k, radius, nb, scratch.candidates);
-      check(i);
-    }
+    cgal_search.neighbors(i, k, nb, scratch.candidates);
+    mismatches += nb.size() != k || !std::equal(nb.begin(), nb.end(), reference.begin() + i * k);
   }
   t.stop();
   return t.time();
@@ -492,7 +456,7 @@ struct Options
   std::size_t cgal_subset = 20000; // CGAL degree 6 / k 96 runs on this many points (0: all)
   std::string mode = "speed";      // speed | scaling | all | single
   std::string mesh = source_dir() + "/data/bunny00.off";
-  std::string out = source_dir() + "/results.md";
+  std::string csv_dir = source_dir() + "/csv"; // where results.*.csv go (make_reports.py reads them there)
   std::size_t scaling_max_n = 2000000;
   bool no_write = false;
   int seed = 42;
@@ -507,7 +471,7 @@ static void usage()
 {
   std::cout <<
     "bench_speed [N] [--n N] [--mode speed|scaling|all|solver] [--cgal-subset M] [--scaling-max-n N]\n"
-    "            [--mesh file.off] [--out results.md] [--no-write] [--seed S]\n"
+    "            [--mesh file.off] [--csv-dir DIR] [--no-write] [--seed S]\n"
     "  speed   : the comparison table at N points (default 100000); CGAL degree 6/k 96 runs on a\n"
     "            strided subset of M points (default 20000, 0 = all), compared in us/point\n"
     "  scaling : N from 100k to --scaling-max-n (default 2M), K from 2 to 10, 1 vs all threads,\n"
@@ -531,7 +495,7 @@ static Options parse(int argc, char** argv)
     else if(a == "--cgal-subset") o.cgal_subset = std::stoul(next());
     else if(a == "--scaling-max-n") o.scaling_max_n = std::stoul(next());
     else if(a == "--mesh") o.mesh = next();
-    else if(a == "--out") o.out = next();
+    else if(a == "--csv-dir") o.csv_dir = next();
     else if(a == "--no-write") o.no_write = true;
     else if(a == "--seed") o.seed = std::stoi(next());
     else if(a == "--single") o.mode = "single";
@@ -562,23 +526,21 @@ struct Targets
   double fit_k2 = -1., fit_k2_single = -1.;    // us per fit, K 2, k 100
   double fit_k6 = -1.;                         // us per fit, K 6, k 96
   double fit_k2_over_apss_50 = -1., fit_k2_over_apss_100 = -1.; // Fitter::fit K 2 over Ponca's APSS, same neighborhoods
-  double knn_k18_over_fastest = -1., knn_k96_over_fastest = -1.; // Neighbor_query time / fastest way measured
+  double knn_k18_over_cgal = -1., knn_k96_over_cgal = -1.; // Neighbor_query time / CGAL's Orthogonal_k_neighbor_search
   double enhance_600k = -1.;                   // s, wavejet_enhance_positions K 6 k 96, N = 600000, all threads
   double enhance_5m = -1., enhance_5m_rss_mb = -1.; // the same at N = 5000000: s, peak MB
   double thread_speedup_min = -1.;             // smallest 2-thread speed-up of the fitting functions
   int threads = 0;
 };
 
-static std::string targets_table(const Targets& t)
+static wavejets_bench::Csv_table targets_table(const Targets& t)
 {
-  std::ostringstream s;
+  wavejets_bench::Csv_table s({"target", "wanted", "measured", ""});
   auto row = [&](const std::string& what, const std::string& target, double value, int prec, const std::string& unit,
                  bool met) {
-    s << "| " << what << " | " << target << " | "
-      << (value < 0 ? std::string("not run") : fmt(value, prec) + unit) << " | "
-      << (value < 0 ? "-" : (met ? "met" : "**not met**")) << " |\n";
+    s.add_row({what, target, value < 0 ? std::string("not run") : fmt(value, prec) + unit,
+               value < 0 ? "-" : (met ? "met" : "not met")});
   };
-  s << "| target | wanted | measured | |\n|---|---|---:|---|\n";
   row("wavejet_estimate_normals K 6, k 96 vs jet_estimate_normals degree 6 (seq)", ">= 30x", t.ratio_k6, 1, "x",
       t.ratio_k6 >= 30.);
   row("wavejet_estimate_normals K 2, k 18 vs jet_estimate_normals degree 2 (seq)", ">= 5x", t.ratio_k2, 1, "x",
@@ -588,16 +550,16 @@ static std::string targets_table(const Targets& t)
   row("Fitter::fit K 2 (default) over Ponca's APSS fit, same neighborhoods, k 50", "<= 3x", t.fit_k2_over_apss_50, 2, "x",
       t.fit_k2_over_apss_50 <= 3.);
   row("the same, k 100", "<= 3x", t.fit_k2_over_apss_100, 2, "x", t.fit_k2_over_apss_100 <= 3.);
-  row("k-NN k 18 (Neighbor_query, seq, tree build included) over the fastest way measured", "<= 1.5x",
-      t.knn_k18_over_fastest, 2, "x", t.knn_k18_over_fastest <= 1.5);
-  row("k-NN k 96, likewise", "<= 1.5x", t.knn_k96_over_fastest, 2, "x", t.knn_k96_over_fastest <= 1.5);
+  row("k-NN k 18 (Neighbor_query, seq, tree build included) over CGAL's Orthogonal_k_neighbor_search", "<= 1x",
+      t.knn_k18_over_cgal, 2, "x", t.knn_k18_over_cgal <= 1.);
+  row("k-NN k 96, likewise", "<= 1x", t.knn_k96_over_cgal, 2, "x", t.knn_k96_over_cgal <= 1.);
   row("wavejet_enhance_positions K 6, k 96, N = 600000, end to end (" + std::to_string(t.threads) + " threads)",
       "<= 6 s", t.enhance_600k, 1, " s", t.enhance_600k <= 6.);
   row("the same, N = 5000000 (--scaling-max-n 5000000)", "<= 50 s", t.enhance_5m, 1, " s", t.enhance_5m <= 50.);
   row("the same, N = 5000000, peak memory", "<= 1024 MB", t.enhance_5m_rss_mb, 0, " MB", t.enhance_5m_rss_mb <= 1024.);
   row("2 threads vs 1, smallest speed-up of wavejet_estimate_normals / wavejet_enhance_positions (N = 600000)",
       ">= 1.8x", t.thread_speedup_min, 2, "x", t.thread_speedup_min >= 1.8);
-  return s.str();
+  return s;
 }
 
 /// The Wavejet least-squares systems of m neighborhoods (k neighbors, order K), as the fitter builds
@@ -648,7 +610,7 @@ static Qr_systems wavejet_systems(const Points& points, std::size_t m, std::size
 
 /// One line of the QR table: the hand-written kernel (run-time dispatch, and the baseline code) and
 /// Eigen's HouseholderQR (one object reused, no allocation per solve) on the same systems.
-static std::string qr_comparison_row(const Points& points, std::size_t order, unsigned int k)
+static std::vector<std::string> qr_comparison_row(const Points& points, std::size_t order, unsigned int k)
 {
   const std::size_t m = (std::min<std::size_t>)(points.size(), 20000);
   const Qr_systems S = wavejet_systems(points, m, order, k);
@@ -740,14 +702,17 @@ static std::string qr_comparison_row(const Points& points, std::size_t order, un
   t.stop();
   const double us_eigen = t.time() * 1e6 / double(m);
   const double worst = worst_relative_difference(mine, eigen);
-  std::ostringstream s;
-  s << "| " << order << " | " << k << " | " << S.rows << " x " << S.cols << " | " << m << " | "
-    << fmt(us_dispatch, 2) << " | " << fmt(us_baseline, 2) << " | " << fmt(us_eigen, 2) << " | "
-    << fmt(us_eigen / us_dispatch, 1) << "x | " << fmt(us_eigen / us_baseline, 1) << "x | " << std::scientific
-    << std::setprecision(1) << worst << std::defaultfloat << " | " << fmt(us_semi_normal, 2) << " | "
-    << fmt(us_dispatch / us_semi_normal, 1) << "x | " << (moments ? std::string("-") : fmt(us_gram_by_dots, 2)) << " | "
-    << fallbacks << " | " << std::scientific << std::setprecision(1) << worst_semi_normal << std::defaultfloat << " |\n";
-  return s.str();
+  auto scientific = [](double v) {
+    std::ostringstream s;
+    s << std::scientific << std::setprecision(1) << v;
+    return s.str();
+  };
+  return {std::to_string(order), std::to_string(k), std::to_string(S.rows) + " x " + std::to_string(S.cols),
+          std::to_string(m), fmt(us_dispatch, 2), fmt(us_baseline, 2), fmt(us_eigen, 2),
+          fmt(us_eigen / us_dispatch, 1) + "x", fmt(us_eigen / us_baseline, 1) + "x", scientific(worst),
+          fmt(us_semi_normal, 2), fmt(us_dispatch / us_semi_normal, 1) + "x",
+          moments ? std::string("-") : fmt(us_gram_by_dots, 2), std::to_string(fallbacks),
+          scientific(worst_semi_normal)};
 }
 
 /// The compilation of the least-squares kernels that WI::dispatch_solver() runs on this processor.
@@ -760,22 +725,22 @@ static std::string solver_variant()
   return WI::processor_runs_avx() ? "AVX" : "baseline";
 }
 
-static std::string qr_comparison_table(const Points& points)
+/// The hand-written QR against Eigen's, and the solver the fits run, at four (K, k) (results.md, section Least
+/// squares).
+static wavejets_bench::Csv_table qr_comparison_table(const Points& points)
 {
-  std::string table = "| K | k | system | systems | hand-written QR, dispatch (us) | baseline kernel (us) | "
-                      "Eigen HouseholderQR (us) | gain (dispatch) | gain (baseline) | max relative difference | "
-                      "the fits' solver, dispatch (us): K 2 from the moments, the QR at K 3 and 4, the semi-normal equations from K 5 "
-                      "(their Gram matrix from polar moments) | its gain over the QR | the same with the Gram matrix dot by dot (us) | "
-                      "systems its guards refuse (solved by the QR) | its max relative difference to the QR |\n"
-                      "|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  wavejets_bench::Csv_table table(
+    {"K", "k", "system", "systems", "hand-written QR, dispatch (us)", "baseline kernel (us)",
+     "Eigen HouseholderQR (us)",
+     "gain (dispatch)", "gain (baseline)", "max relative difference",
+     "the fits' solver, dispatch (us): K 2 from the moments, the QR at K 3 and 4, the semi-normal equations from K 5 "
+     "(their Gram matrix from polar moments)",
+     "its gain over the QR", "the same with the Gram matrix dot by dot (us)",
+     "systems its guards refuse (solved by the QR)", "its max relative difference to the QR"});
   for(const std::pair<std::size_t, unsigned int>& c : {std::make_pair(std::size_t(2), 18u), std::make_pair(std::size_t(2), 100u),
                                                        std::make_pair(std::size_t(4), 32u), std::make_pair(std::size_t(6), 96u)})
-    table += qr_comparison_row(points, c.first, c.second);
-  return table + "\nOne thread; each solve includes copying the system into the solver's scratch (Eigen's "
-                 "`compute` copies it too). `dispatch` is the code the package runs (AVX-512, AVX2 + FMA or AVX "
-                 "where the processor has them: see the Machine line), `baseline` the portable code; the "
-                 "difference is relative to the largest "
-                 "coefficient of each solution.\n";
+    table.add_row(qr_comparison_row(points, c.first, c.second));
+  return table;
 }
 
 /// One fit at the full order in a given frame, as the fitting core runs it, on the systems of
@@ -841,12 +806,11 @@ static Final_fit_times time_final_fit(const Points& points, std::size_t order, u
 /// (basis, solve: time_final_fit()) and the rest of the core (PCA frame, the other solves of the
 /// tangent-plane search, frames); and what remains of the call (gathering the neighborhoods, the
 /// filter, writing the results).
-static std::string time_breakdown_table(const Points& input)
+static wavejets_bench::Csv_table time_breakdown_table(const Points& input)
 {
-  std::ostringstream s;
-  s << "| function | total | k-NN | fitting core | of which: one full-order fit, basis | its solve | "
-       "the rest of the core (PCA, the other solves of the tangent-plane search) | the rest of the call "
-       "(gathering, filter, writing) |\n|---|---:|---:|---:|---:|---:|---:|---:|\n";
+  wavejets_bench::Csv_table s({"function", "total", "k-NN", "fitting core", "of which: one full-order fit, basis",
+                               "its solve", "the rest of the core (PCA, the other solves of the tangent-plane search)",
+                               "the rest of the call (gathering, filter, writing)"});
   struct Case
   {
     const char* name;
@@ -880,17 +844,12 @@ static std::string time_breakdown_table(const Points& input)
       final_fit.basis_us = (std::min)(final_fit.basis_us, again.basis_us);
       final_fit.solve_us = (std::min)(final_fit.solve_us, again.solve_us);
     }
-    s << "| " << c.name << " | " << fmt(total, 2) << " | " << fmt(knn, 2) << " | " << fmt(fit, 2) << " | "
-      << (c.order == 2 ? std::string("-") : fmt(final_fit.basis_us, 2)) << " | " << fmt(final_fit.solve_us, 2) << " | "
-      << fmt(fit - final_fit.basis_us - final_fit.solve_us, 2) << " | " << fmt(total - knn - fit, 2) << " |\n";
+    s.add_row({c.name, fmt(total, 2), fmt(knn, 2), fmt(fit, 2),
+               c.order == 2 ? std::string("-") : fmt(final_fit.basis_us, 2), fmt(final_fit.solve_us, 2),
+               fmt(fit - final_fit.basis_us - final_fit.solve_us, 2), fmt(total - knn - fit, 2)});
   }
-  s << "\nEach column is measured on its own, the fastest of " << rounds << " rounds in which every part runs once "
-       "(the two last ones are differences), on the N points above or on "
-    << m << " of their neighborhoods: the parts need not add up to the total exactly. One full-order fit at K 2 "
-       "is solved from the moments of the points (no basis is built); wavejet_estimate_normals searches the "
-       "tangent plane with order-2 fits (tangent_plane_order 2) and fits the full order once, "
-       "wavejet_enhance_positions searches it at the full order (3 full-order solves by default).\n";
-  return s.str();
+  // results.md explains the columns: each the fastest of `rounds`, on `m` neighborhoods.
+  return s;
 }
 
 static void run_speed(const Options& o, std::vector<Row>& rows, std::vector<std::string>& notes, Targets& targets)
@@ -920,27 +879,18 @@ static void run_speed(const Options& o, std::vector<Row>& rows, std::vector<std:
     add(name, "par", T, input.size(), time_knn<CGAL::Parallel_tag>(input, k));
 #endif
   }
-  // The same lists by other means (knn_alternatives.h), sequential, build included.
+  // The same lists by CGAL's own k-NN search, sequential, build included.
   for(unsigned int k : {18u, 96u})
   {
     const double ours = time_knn<CGAL::Sequential_tag>(input, k);
-    double fastest = ours;
-    for(Knn_alternative which :
-        {Knn_alternative::CGAL_K_NEIGHBOR_SEARCH, Knn_alternative::BALL_FROM_PREVIOUS, Knn_alternative::UNIFORM_GRID})
-    {
-      std::size_t mismatches = 0;
-      const double s = time_knn_alternative(input, k, which, mismatches);
-      const std::string name = std::string("kNN alternative, ") +
-                               (which == Knn_alternative::UNIFORM_GRID         ? "uniform grid"
-                                : which == Knn_alternative::BALL_FROM_PREVIOUS ? "CGAL sphere from the previous radius"
-                                                                               : "CGAL Orthogonal_k_neighbor_search (the package's before)") +
-                               ", k " + std::to_string(k);
-      add(name, "seq", 1, input.size(), s);
-      notes.push_back(name + ": " + std::to_string(mismatches) + " of " + std::to_string(input.size()) +
-                      " neighbor lists differ from Neighbor_query's");
-      fastest = (std::min)(fastest, s);
-    }
-    (k == 96 ? targets.knn_k96_over_fastest : targets.knn_k18_over_fastest) = ours / fastest;
+    std::size_t mismatches = 0;
+    const double cgal = time_cgal_knn(input, k, mismatches);
+    const std::string name =
+      "kNN alternative, CGAL Orthogonal_k_neighbor_search (the package's before), k " + std::to_string(k);
+    add(name, "seq", 1, input.size(), cgal);
+    notes.push_back(name + ": " + std::to_string(mismatches) + " of " + std::to_string(input.size()) +
+                    " neighbor lists differ from Neighbor_query's");
+    (k == 96 ? targets.knn_k96_over_cgal : targets.knn_k18_over_cgal) = ours / cgal;
   }
 
   // Fitting core alone
@@ -1048,11 +998,10 @@ static void run_speed(const Options& o, std::vector<Row>& rows, std::vector<std:
   }
 }
 
-static std::string speed_table(const std::vector<Row>& rows)
+static wavejets_bench::Csv_table speed_table(const std::vector<Row>& rows)
 {
-  std::ostringstream s;
-  s << "| step | tag | threads | N | time (s) | us / point | x faster than CGAL | par speed-up | peak RSS (MB) |\n"
-    << "|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
+  wavejets_bench::Csv_table s(
+    {"step", "tag", "threads", "N", "time (s)", "us / point", "x faster than CGAL", "par speed-up", "peak RSS (MB)"});
   for(const Row& r : rows)
   {
     std::string ratio = "", speedup = "";
@@ -1062,12 +1011,10 @@ static std::string speed_table(const std::vector<Row>& rows)
     if(r.mode == "par")
       for(const Row& c : rows)
         if(c.step == r.step && c.mode == "seq") speedup = fmt(c.seconds / r.seconds, 2) + "x";
-    s << "| " << r.step << " | " << r.mode << " | " << r.threads << " | " << r.n << " | " << fmt(r.seconds, 3)
-      << " | " << fmt(r.us(), 2) << " | " << ratio << " | " << speedup << " | " << fmt(r.rss_mb, 0) << " |\n";
+    s.add_row({r.step, r.mode, std::to_string(r.threads), std::to_string(r.n), fmt(r.seconds, 3), fmt(r.us(), 2), ratio,
+               speedup, fmt(r.rss_mb, 0)});
   }
-  s << "\n`peak RSS` is the process's peak (getrusage ru_maxrss) after the step: monotone over the table, "
-       "it includes the N input points and every earlier step. The scaling table gives per-run peaks.\n";
-  return s.str();
+  return s;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -1117,20 +1064,24 @@ static bool run_child(const Options& o, const std::string& fn, std::size_t n, st
   return true;
 }
 
-static std::string run_scaling(const Options& o, std::vector<std::string>& notes, Targets& targets)
+/// The three scaling tables (results.md, section Scaling).
+struct Scaling_tables
+{
+  wavejets_bench::Csv_table n{{"function", "K", "k", "N", "time (s)", "us / point", "peak RSS (MB)", "bytes / point"}};
+  wavejets_bench::Csv_table order{{"K", "unknowns", "time (s)", "us / point", "peak RSS (MB)"}};
+  wavejets_bench::Csv_table threads{{"function", "K", "k", "threads", "time (s)", "speed-up"}};
+};
+
+static Scaling_tables run_scaling(const Options& o, std::vector<std::string>& notes, Targets& targets)
 {
   const int T = max_threads();
-  std::vector<Scaling_row> rows;
   Scaling_row r;
-  std::ostringstream s;
+  Scaling_tables s;
 
   // N: time and memory against N (K = 6, k = 96 enhancement and K = 2, k = 18 normals, all threads)
   std::vector<std::size_t> ns;
   for(std::size_t n : {100000ul, 200000ul, 600000ul, 1000000ul, 2000000ul, 5000000ul})
     if(n <= o.scaling_max_n) ns.push_back(n);
-  s << "#### Time and memory against N (" << T << " threads)\n\n"
-    << "| function | K | k | N | time (s) | us / point | peak RSS (MB) | bytes / point |\n"
-    << "|---|---:|---:|---:|---:|---:|---:|---:|\n";
   for(const char* fn : {"normals", "enhance"})
     for(std::size_t n : ns)
     {
@@ -1142,26 +1093,22 @@ static std::string run_scaling(const Options& o, std::vector<std::string>& notes
         targets.enhance_5m = r.seconds;
         targets.enhance_5m_rss_mb = r.rss_mb;
       }
-      s << "| " << (enh ? "wavejet_enhance_positions" : "wavejet_estimate_normals") << " | " << r.order << " | "
-          << r.k << " | " << n << " | " << fmt(r.seconds, 2) << " | " << fmt(1e6 * r.seconds / n, 2) << " | "
-          << fmt(r.rss_mb, 0) << " | " << fmt(r.rss_mb * 1048576. / n, 0) << " |\n";
+      s.n.add_row({enh ? "wavejet_enhance_positions" : "wavejet_estimate_normals", std::to_string(r.order),
+                   std::to_string(r.k), std::to_string(n), fmt(r.seconds, 2), fmt(1e6 * r.seconds / n, 2),
+                   fmt(r.rss_mb, 0), fmt(r.rss_mb * 1048576. / n, 0)});
     }
   if(o.scaling_max_n < 5000000)
     notes.push_back("Not run: N above " + std::to_string(o.scaling_max_n) + " (pass --scaling-max-n 5000000).");
 
   // K: order from 2 to 10 at fixed k = 96 (enough points for K = 10: 66 unknowns x 1.1)
   const std::size_t nk = (std::min<std::size_t>)(o.n, 100000);
-  s << "\n#### Order K (wavejet_enhance_positions, k = 96, N = " << nk << ", " << T << " threads)\n\n"
-    << "| K | unknowns | time (s) | us / point | peak RSS (MB) |\n|---:|---:|---:|---:|---:|\n";
   for(std::size_t K = 2; K <= 10; ++K)
     if(run_child(o, "enhance", nk, K, 96, T, r))
-      s << "| " << K << " | " << WI::number_of_coefficients(K) << " | " << fmt(r.seconds, 2) << " | "
-        << fmt(1e6 * r.seconds / nk, 2) << " | " << fmt(r.rss_mb, 0) << " |\n";
+      s.order.add_row({std::to_string(K), std::to_string(WI::number_of_coefficients(K)), fmt(r.seconds, 2),
+                       fmt(1e6 * r.seconds / nk, 2), fmt(r.rss_mb, 0)});
 
   // Threads
   const std::size_t nt = (std::min<std::size_t>)(600000, o.scaling_max_n);
-  s << "\n#### Threads (N = " << nt << "; tbb::global_control; 1 thread = Sequential_tag)\n\n"
-    << "| function | K | k | threads | time (s) | speed-up |\n|---|---:|---:|---:|---:|---:|\n";
   for(const char* fn : {"knn", "normals", "enhance"})
   {
     const std::string f = fn;
@@ -1174,13 +1121,15 @@ static std::string run_scaling(const Options& o, std::vector<std::string>& notes
         if(t == 1) t1 = r.seconds;
         if(t == 2 && f != "knn" && (targets.thread_speedup_min < 0 || t1 / r.seconds < targets.thread_speedup_min))
           targets.thread_speedup_min = t1 / r.seconds;
-        s << "| " << (f == "knn" ? "kNN only" : f == "normals" ? "wavejet_estimate_normals" : "wavejet_enhance_positions")
-          << " | " << (f == "knn" ? std::string("-") : std::to_string(K)) << " | " << k << " | " << t << " | "
-          << fmt(r.seconds, 2) << " | " << fmt(t1 / r.seconds, 2) << "x |\n";
+        s.threads.add_row({f == "knn"       ? "kNN only"
+                           : f == "normals" ? "wavejet_estimate_normals"
+                                            : "wavejet_enhance_positions",
+                           f == "knn" ? std::string("-") : std::to_string(K), std::to_string(k), std::to_string(t),
+                           fmt(r.seconds, 2), fmt(t1 / r.seconds, 2) + "x"});
       }
   }
   if(T < 4) notes.push_back("Threads: only 1 to " + std::to_string(T) + " on this machine.");
-  return s.str();
+  return s;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -1189,68 +1138,56 @@ int main(int argc, char** argv)
 {
   const Options o = parse(argc, argv);
   if(o.mode == "single") return run_single(o);
+  if(o.mode == "solver") // the least-squares table alone, printed (nothing written)
+  {
+    std::cout << qr_comparison_table(sample_bunny(o.mesh, o.n, o.seed)).str();
+    return EXIT_SUCCESS;
+  }
 
-  std::ostringstream command;
-  command << "./bench_speed";
-  for(int i = 1; i < argc; ++i) command << " " << argv[i];
-
+  // Each table goes to <csv-dir>/results.<name>.csv; make_reports.py writes results.md and results.png from them.
+  std::vector<std::pair<std::string, wavejets_bench::Csv_table> > tables;
   std::vector<Row> rows;
   std::vector<std::string> notes;
   Targets targets;
   targets.threads = max_threads();
-  std::string speed, scaling, qr, breakdown;
   CGAL::Real_timer total;
   total.start();
   if(o.mode == "speed" || o.mode == "all")
   {
     run_speed(o, rows, notes, targets);
-    speed = speed_table(rows);
+    tables.emplace_back("speed", speed_table(rows));
     const Points sample = sample_bunny(o.mesh, o.n, o.seed);
-    qr = qr_comparison_table(sample);
-    breakdown = time_breakdown_table(sample);
+    tables.emplace_back("least_squares", qr_comparison_table(sample));
+    tables.emplace_back("time_split", time_breakdown_table(sample));
   }
-  if(o.mode == "scaling" || o.mode == "all") scaling = run_scaling(o, notes, targets);
-  if(o.mode == "solver") // the least-squares table alone, printed (nothing written)
+  if(o.mode == "scaling" || o.mode == "all")
   {
-    std::cout << qr_comparison_table(sample_bunny(o.mesh, o.n, o.seed));
-    return EXIT_SUCCESS;
+    Scaling_tables scaling = run_scaling(o, notes, targets);
+    tables.emplace_back("scaling_n", std::move(scaling.n));
+    tables.emplace_back("scaling_order", std::move(scaling.order));
+    tables.emplace_back("scaling_threads", std::move(scaling.threads));
   }
   total.stop();
+  tables.emplace_back("targets", targets_table(targets));
 
-  std::ostringstream md;
-  const std::time_t now = std::time(nullptr);
-  char date[64];
-  std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
-  md << "# Wavejets speed benchmark\n\n"
-     << "* Date: " << date << "\n"
-     << "* Command: `" << command.str() << "` (from the build directory, built with `-DCMAKE_BUILD_TYPE=Release`)\n"
-     << "* Machine: " << shell_line("lscpu | sed -n 's/^Model name: *//p' | head -1") << ", "
-     << std::thread::hardware_concurrency() << " hardware threads ("
-     << shell_line("lscpu | sed -n 's/^Core(s) per socket: *//p' | head -1") << " cores per socket), "
-     << shell_line("awk '/MemTotal/ {printf \"%.1f GB\", $2/1048576}' /proc/meminfo") << " RAM; TBB threads: "
-     << max_threads() << "; the solver's variant the dispatch runs: " << solver_variant() << "\n"
-     << "* Git commit: " << shell_line("git -C '" + source_dir() + "' rev-parse --short HEAD 2>/dev/null") << "\n"
-     << "* Input: N = " << o.n << " points sampled uniformly on `data/bunny00.off` (CGAL::Random_points_in_triangle_mesh_3, "
-     << "CGAL::Random seed " << o.seed << ")\n"
-     << "* Total benchmark time: " << fmt(total.time(), 1) << " s\n\n";
-  md << "## Targets\n\n" << targets_table(targets) << "\n";
-  if(!speed.empty()) md << "## Speed (us per point; `seq` = Sequential_tag, `par` = Parallel_tag)\n\n" << speed << "\n";
-  if(!breakdown.empty())
-    md << "## Where the time goes (Sequential_tag, 1 thread, us per point)\n\n" << breakdown << "\n";
-  if(!qr.empty())
-    md << "## Least squares: the hand-written Householder QR against Eigen's HouseholderQR, and the solver the fits run\n\n" << qr << "\n";
-  if(!scaling.empty()) md << "## Scaling\n\n" << scaling << "\n";
-  if(!notes.empty())
+  wavejets_bench::Csv_table note_table({"note"});
+  for(const std::string& n : notes) note_table.add_row({n});
+  tables.emplace_back("notes", std::move(note_table));
+  wavejets_bench::Csv_table context = wavejets_bench::context_table();
+  context.add_row({"machine", shell_line("lscpu | sed -n 's/^Model name: *//p' | head -1") + ", " +
+                                std::to_string(std::thread::hardware_concurrency()) + " hardware threads (" +
+                                shell_line("lscpu | sed -n 's/^Core(s) per socket: *//p' | head -1") +
+                                " cores per socket), " +
+                                shell_line("awk '/MemTotal/ {printf \"%.1f GB\", $2/1048576}' /proc/meminfo") +
+                                " RAM; TBB threads: " + std::to_string(max_threads()) +
+                                "; the solver's variant the dispatch runs: " + solver_variant()});
+  context.add_row({"total time (s)", fmt(total.time(), 1)});
+  tables.emplace_back("context", std::move(context));
+
+  for(const auto& t : tables)
   {
-    md << "## Notes\n\n";
-    for(const std::string& n : notes) md << "* " << n << "\n";
-  }
-  std::cout << "\n" << md.str();
-  if(!o.no_write)
-  {
-    std::ofstream f(o.out);
-    f << md.str();
-    std::cout << "\nwritten to " << o.out << "\n";
+    std::cout << "\nresults." << t.first << "\n" << t.second.str();
+    if(!o.no_write) t.second.write(o.csv_dir, "results." + t.first);
   }
   return 0;
 }

@@ -4,13 +4,15 @@
 // and outliers, each normal estimator feeds the same workflow, and the reconstructed surface is
 // compared with the true one (point-to-mesh distances through AABB trees, both ways).
 //
-// Usage: bench_workflows [--points N] [--k K] [--samples M] [--mesh file.off]... [--out file.md]
+// Usage: bench_workflows [--points N] [--k K] [--samples M] [--mesh file.off]... [--csv-dir DIR]
 //                        [--no-write]
 //   --points N   points sampled per mesh (default 30000)
 //   --k K        neighbors of every normal estimator and of mst_orient_normals (default 24, CGAL's tutorial)
 //   --samples M  points sampled on each surface for the distances (default 30000)
 //   --mesh F     a closed triangle mesh (repeatable; default data/bunny00.off and data/fandisk.off)
-//   --out F      where the tables go (default workflows.md next to this source)
+//   --csv-dir D  where the tables go as CSV (default csv/ next to this source: workflows.<mesh>.csv,
+//                workflows.meshes.csv, workflows.context.csv); make_reports.py writes workflows.md and
+//                workflows.png from them
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Point_set_3.h>
 #include <CGAL/Surface_mesh.h>
@@ -41,9 +43,11 @@
 
 #include <CGAL/wavejet_estimate_normals.h>
 
+#include "bench_common.h"
+
 #include <algorithm>
+#include <cctype>
 #include <cmath>
-#include <ctime>
 #include <random>
 #include <fstream>
 #include <functional>
@@ -147,16 +151,13 @@ struct Options
   std::size_t n = 30000, samples = 30000;
   unsigned int k = 24;
   std::vector<std::string> meshes;
-  std::string out = here + "workflows.md";
+  std::string csv_dir = here + "csv";
   bool write = true;
-  std::string command;
 };
 
 /// Reads the options; returns false when the program should stop at once with `exit_code`.
 static bool parse_command_line(int argc, char** argv, Options& o, int& exit_code)
 {
-  std::ostringstream command;
-  command << "bench_workflows";
   for(int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
@@ -165,16 +166,15 @@ static bool parse_command_line(int argc, char** argv, Options& o, int& exit_code
     else if(a == "--k" && has_value) o.k = unsigned(std::stoul(argv[++i]));
     else if(a == "--samples" && has_value) o.samples = std::stoul(argv[++i]);
     else if(a == "--mesh" && has_value) o.meshes.push_back(argv[++i]);
-    else if(a == "--out" && has_value) o.out = argv[++i];
+    else if(a == "--csv-dir" && has_value) o.csv_dir = argv[++i];
     else if(a == "--no-write") o.write = false;
     else
     {
-      std::cerr << "usage: bench_workflows [--points N] [--k K] [--samples M] [--mesh file.off]... [--out file.md] [--no-write]\n";
+      std::cerr << "usage: bench_workflows [--points N] [--k K] [--samples M] [--mesh file.off]... [--csv-dir DIR] "
+                   "[--no-write]\n";
       exit_code = a == "--help" ? 0 : 1;
       return false;
     }
-    command << " " << a;
-    if(a != "--no-write") command << " " << argv[i];
   }
   if(o.n < 1000 || o.k < 6 || o.samples < 1000)
   {
@@ -185,7 +185,6 @@ static bool parse_command_line(int argc, char** argv, Options& o, int& exit_code
   if(o.meshes.empty())
     o.meshes = {o.here + "data/bunny00.off",
                 o.here + "data/fandisk.off"};
-  o.command = command.str();
   return true;
 }
 
@@ -327,9 +326,9 @@ static Result run_workflow(const Estimator& e, const Point_set& scan, const Poin
   return r;
 }
 
-/// The workflow with every estimator on every scan of one mesh; appends its line of the setup.
-static bool run_mesh(const std::string& file, const Options& o, std::vector<Result>& results, std::ostream& setup,
-                     const CGAL::Real_timer& total)
+/// The workflow with every estimator on every scan of one mesh; appends its row to `meshes`.
+static bool run_mesh(const std::string& file, const Options& o, std::vector<Result>& results,
+                     wavejets_bench::Csv_table& meshes, const CGAL::Real_timer& total)
 {
   Mesh truth;
   if(!CGAL::IO::read_polygon_mesh(file, truth) || truth.is_empty() || !CGAL::is_triangle_mesh(truth)
@@ -347,10 +346,9 @@ static bool run_mesh(const std::string& file, const Options& o, std::vector<Resu
   truth_tree.accelerate_distance_queries();
   const std::vector<Point> truth_samples = sample(truth, o.samples, 7);
   const std::vector<Point> clean = sample(truth, o.n, 42);
-  setup << "- `" << mesh_name << "`: " << truth.number_of_vertices() << " vertices, " << truth.number_of_faces()
-        << " triangles, bounding-box diagonal " << fmt(diagonal, 4) << "; average spacing of the " << o.n
-        << " clean samples (6 neighbors): "
-        << fmt(CGAL::compute_average_spacing<CGAL::Sequential_tag>(clean, 6) / diagonal * 100., 3) << "% of the diagonal.\n";
+  const double spacing = CGAL::compute_average_spacing<CGAL::Sequential_tag>(clean, 6);
+  meshes.add_row({mesh_name, std::to_string(truth.number_of_vertices()), std::to_string(truth.number_of_faces()),
+                  fmt(diagonal, 4), fmt(spacing / diagonal * 100., 3)});
   const Ground_truth t{mesh_name, truth, truth_tree, truth_samples, diagonal, outward};
   const std::vector<Condition> conditions = scan_conditions();
   for(const Condition& c : conditions)
@@ -369,61 +367,33 @@ static bool run_mesh(const std::string& file, const Options& o, std::vector<Resu
   return true;
 }
 
-/// The tables (markdown).
-static std::string workflows_report(const Options& o, const std::vector<Result>& results, const std::string& setup,
-                                    double total_seconds)
+/// The name of a mesh's table: the file name without its extension and trailing digits (bunny00.off: bunny).
+static std::string table_name(const std::string& mesh_name)
 {
-  std::ostringstream md;
-  const std::time_t now = std::time(nullptr);
-  char date[64];
-  std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
-  md << "# Normal estimators in CGAL's reconstruction workflow\n\n"
-     << "Generated by `benchmark/Wavejets/bench_workflows.cpp` on " << date << " in " << fmt(total_seconds, 0)
-     << " s, " << std::thread::hardware_concurrency() << " hardware threads (the machine was shared with other builds"
-     << ": the times are indicative). Command (from the repository root):\n\n"
-     << "    cmake -S . -B build/bench -DCMAKE_BUILD_TYPE=Release && cmake --build build/bench --target bench_workflows -j1\n"
-     << "    build/bench/benchmark/Wavejets/" << o.command << "\n\n"
-     << "## Setup\n\n"
-     << "The workflow of `examples/Wavejets/wavejet_reconstruction_workflow.cpp` (CGAL's reconstruction tutorial) with "
-     << "each normal estimator in turn, everything else identical:\n\n"
-     << "1. A scan: " << o.n << " points sampled uniformly on a closed mesh (`CGAL::Random_points_in_triangle_mesh_3`, fixed "
-     << "seed), plus Gaussian noise of standard deviation sigma per coordinate (sigma in % of the bounding-box diagonal); "
-     << "with outliers, every 20th point (5%) is moved by a uniform random vector of a ball of radius 2.5% of the diagonal.\n"
-     << "2. `remove_outliers` (24 neighbors, `threshold_percent(100).threshold_distance(2 x average spacing to 24 neighbors)`). No grid "
-     << "simplification (the samples are uniform already).\n"
-     << "3. Normals with k = " << o.k << " neighbors, `Sequential_tag` (this step alone is timed): `pca_estimate_normals`; "
-     << "`jet_estimate_normals` (degree 2, its default); `wavejet_estimate_normals` (order 2, its default); "
-     << "`wavejet_estimate_normals` with `robust_iterations(3)`; `wavejet_estimate_normals` with `use_neighbor_normals(true)` "
-     << "(Hermite fit: heights and the neighbors' normals, which it first estimates itself with its plain fit).\n"
-     << "4. `mst_orient_normals` (k = " << o.k << "); points it cannot orient are removed.\n"
-     << "5. `poisson_surface_reconstruction_delaunay` with the average spacing (6 neighbors) as size parameter.\n"
-     << "6. Distances, in % of the bounding-box diagonal, through AABB trees: from " << o.samples << " points sampled on the "
-     << "reconstruction to the true mesh (mean, 95th percentile) and from " << o.samples << " points sampled on the true mesh "
-     << "to the reconstruction (mean, 95th percentile; large where the reconstruction misses or adds a part); "
-     << "Hausdorff = the largest of all these distances (a sampled approximation of the symmetric Hausdorff distance).\n"
-     << "7. Normal error after orientation, outliers excluded: mean angle to the true normal of the closest triangle "
-     << "(unoriented, degrees), and the % of normals pointing inward (orientation failures).\n\n"
-     << setup << "\n";
-  for(const std::string& file : o.meshes)
+  std::string stem = mesh_name.substr(0, mesh_name.find('.'));
+  while(!stem.empty() && std::isdigit(static_cast<unsigned char>(stem.back()))) stem.pop_back();
+  return "workflows." + stem;
+}
+
+/// The table of one mesh: every scan and estimator.
+static wavejets_bench::Csv_table mesh_table(const std::string& mesh_name, const std::vector<Result>& results)
+{
+  wavejets_bench::Csv_table table({"scan", "normals", "normal step (s)", "mean angle (deg)", "inward (%)",
+                                   "rec. to true: mean", "p95", "true to rec.: mean", "p95", "Hausdorff"});
+  for(const Result& r : results)
   {
-    const std::string mesh_name = file.substr(file.find_last_of('/') + 1);
-    md << "## `" << mesh_name << "`\n\n"
-       << "| scan | normals | normal step (s) | mean angle (deg) | inward (%) | rec. to true: mean | p95 | true to rec.: mean | p95 | Hausdorff |\n"
-       << "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
-    for(const Result& r : results)
-    {
-      if(r.mesh != mesh_name) continue;
-      md << "| " << r.condition << " (" << r.after_outlier_removal << " pts) | " << r.estimator << " | " << fmt(r.normal_seconds, 3)
-         << " | " << fmt(r.mean_angle, 2) << " | " << fmt(r.flipped_percent, 2) << " | ";
-      if(r.reconstructed)
-        md << fmt(r.to_true_mean) << " | " << fmt(r.to_true_p95) << " | " << fmt(r.from_true_mean) << " | "
-           << fmt(r.from_true_p95) << " | " << fmt(r.hausdorff, 2) << " |\n";
-      else
-        md << "failed | | | | |\n";
-    }
-    md << "\n";
+    if(r.mesh != mesh_name) continue;
+    std::vector<std::string> row{r.condition + " (" + std::to_string(r.after_outlier_removal) + " pts)", r.estimator,
+                                 fmt(r.normal_seconds, 3), fmt(r.mean_angle, 2), fmt(r.flipped_percent, 2)};
+    if(r.reconstructed)
+      for(const std::string& c : {fmt(r.to_true_mean), fmt(r.to_true_p95), fmt(r.from_true_mean), fmt(r.from_true_p95),
+                                  fmt(r.hausdorff, 2)})
+        row.push_back(c);
+    else
+      for(const char* c : {"failed", "", "", "", ""}) row.push_back(c);
+    table.add_row(row);
   }
-  return md.str();
+  return table;
 }
 
 int main(int argc, char** argv)
@@ -434,19 +404,34 @@ int main(int argc, char** argv)
   CGAL::Real_timer total;
   total.start();
   std::vector<Result> results;
-  std::ostringstream setup;
+  wavejets_bench::Csv_table meshes({"mesh", "vertices", "triangles", "bounding-box diagonal",
+                                    "average spacing of the clean samples, 6 neighbors (% of the diagonal)"});
   for(const std::string& file : o.meshes)
-    if(!run_mesh(file, o, results, setup, total)) return 1;
+    if(!run_mesh(file, o, results, meshes, total)) return 1;
   total.stop();
 
-  const std::string md = workflows_report(o, results, setup.str(), total.time());
-  std::cout << "\n" << md;
-  if(o.write)
+  // workflows.md's tables, as CSV: one per mesh, the meshes, the run's context (make_reports.py writes the report).
+  std::vector<std::pair<std::string, wavejets_bench::Csv_table> > tables;
+  for(const std::string& file : o.meshes)
   {
-    std::ofstream f(o.out);
-    f << md;
-    if(!f) { std::cerr << "cannot write " << o.out << "\n"; return 1; }
-    std::cout << "written to " << o.out << "\n";
+    const std::string mesh_name = file.substr(file.find_last_of('/') + 1);
+    tables.emplace_back(table_name(mesh_name), mesh_table(mesh_name, results));
+  }
+  tables.emplace_back("workflows.meshes", meshes);
+  wavejets_bench::Csv_table context = wavejets_bench::context_table();
+  context.add_row({"machine", std::to_string(std::thread::hardware_concurrency()) + " hardware threads; " +
+#if defined(__clang__)
+                                "clang++ " + std::to_string(__clang_major__) +
+#elif defined(__GNUC__)
+                                "g++ " + std::to_string(__GNUC__) +
+#endif
+                                " and CGAL " + CGAL_VERSION_STR + ", Release"});
+  context.add_row({"run time (s)", fmt(total.time(), 0)});
+  tables.emplace_back("workflows.context", context);
+  for(const auto& t : tables)
+  {
+    std::cout << "\n" << t.first << "\n" << t.second.str();
+    if(o.write) t.second.write(o.csv_dir, t.first);
   }
   return 0;
 }
