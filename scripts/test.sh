@@ -33,6 +33,8 @@ if [ "${WAVEJETS_NO_CCACHE:-0}" != 1 ] && command -v ccache > /dev/null; then
   # The tests and benchmarks use precompiled headers: ccache caches their compilations only with
   # these sloppiness settings (its manual, "Precompiled headers").
   export CCACHE_SLOPPINESS="${CCACHE_SLOPPINESS:-pch_defines,time_macros,include_file_mtime,include_file_ctime}"
+  # Paths below the clone hashed relative to it: two clones share their cached compilations.
+  export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$root}"
   echo "ccache: $(command -v ccache) (WAVEJETS_NO_CCACHE=1 compiles without it)"
 fi
 
