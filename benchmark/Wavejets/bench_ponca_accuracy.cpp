@@ -18,8 +18,8 @@
 //   accuracy_ponca.png from them. --quick: sphere and torus, noise {0, 0.5%}, k {20, 100}.
 //
 // Ponca (https://github.com/poncateam/ponca, MPL-2.0) is used here only, never by the package. CMake
-// unpacks it from ../shared/deps/ponca-*.tar.xz or takes WAVEJETS_PONCA_DIR; without it this program
-// still builds and runs, without the Ponca rows (WAVEJETS_HAVE_PONCA undefined).
+// unpacks the release tarball WAVEJETS_PONCA_TARBALL (CMakeLists.txt) or takes WAVEJETS_PONCA_DIR;
+// without it this program still builds and runs, without the Ponca rows (WAVEJETS_HAVE_PONCA undefined).
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Monge_via_jet_fitting.h>
