@@ -28,14 +28,15 @@
 // experiment runs CGAL::wavejet_estimate_curvatures / wavejet_estimate_normals on all N points at
 // the recommended settings and checks that they give the same values at the evaluation points.
 //
-// Usage: bench_accuracy [--quick] [--points N] [--eval M] [--out DIR] [--no-plot]
+// Usage: bench_accuracy [--quick] [--points N] [--eval M] [--csv-dir DIR]
 //                       [--noisy-pipeline | --noisy-pipeline-only]
-// Writes DIR/accuracy.md, DIR/accuracy_*.dat, DIR/accuracy.gp and (with gnuplot) DIR/accuracy.png; the
-// generated files name each other by paths relative to DIR (run gnuplot from DIR). DIR defaults to the working
-// folder: the committed accuracy.md is written by make_reports.py from csv/ (see README.md in this folder).
-// --noisy-pipeline adds the section "Noisy scans: denoise, then estimate" (its run time: accuracy.md);
-// --noisy-pipeline-only runs that section alone and merges it (and its line in "Targets") into the
-// existing DIR/accuracy.md. A run without either flag keeps that section from the existing report.
+// Writes its tables as CSV only, DIR/accuracy.<table>.csv and DIR/accuracy.context.csv (machine, run times); DIR
+// defaults to csv/ beside this source, --quick writes nothing unless --csv-dir is given. make_reports.py writes
+// accuracy.md and accuracy.png from them (see README.md in this folder). Tables: summary, noise_best, targets,
+// point_set_functions, outliers, noisy_seed_normals, full_grid; --noisy-pipeline adds the section "Noisy scans:
+// denoise, then estimate" (accuracy.pipeline_*.csv; the target tables at sigma = 0.5% only when that noise level
+// runs), --noisy-pipeline-only runs that section alone. accuracy.context.csv keeps the keys of an existing one that
+// the run does not measure (the noisy-pipeline run time, or the machine and total run time).
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Monge_via_jet_fitting.h>
@@ -55,7 +56,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <ctime>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -82,11 +82,11 @@ typedef CGAL::Parallel_if_available_tag Tag;
 
 struct Options
 {
-  bool quick = false, plot = true;
+  bool quick = false, csv_dir_given = false;
   bool pipeline = false, pipeline_only = false; // --noisy-pipeline, --noisy-pipeline-only
   std::size_t points = 20000, eval = 300;
-  std::string out;
-  std::string command;
+  std::string csv_dir = std::string(__FILE__).substr(0, std::string(__FILE__).find_last_of('/')) + "/csv";
+  bool write() const { return !quick || csv_dir_given; } // --quick writes nothing unless --csv-dir
 };
 
 enum Estimator { WJ = 0, WJ_R3, WJ_T, WJ_FIX, CGAL_JET, PCA, NUM_ESTIMATORS };
@@ -308,6 +308,14 @@ static std::string fmt(double v, int prec = 3)
   return s.str();
 }
 
+/// `v` as the default stream output writes it (6 significant digits).
+static std::string num(double v)
+{
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
 // ---------------------------------------------------------------------------------------------
 // Noisy scans: denoise, then estimate (--noisy-pipeline / --noisy-pipeline-only)
 //
@@ -332,7 +340,7 @@ static std::string fmt(double v, int prec = 3)
 
 enum Pipe_method { PIPE_PLAIN = 0, PIPE_WJ, PIPE_WJ_T, PIPE_CGAL_S, NUM_PIPE_METHODS };
 static const char* pipe_name[NUM_PIPE_METHODS] = {"plain CGAL", "WJ", "WJ-T", "CGAL-S"};
-static const char* pipe_dat_name[NUM_PIPE_METHODS] = {"plain", "WJ", "WJ-T", "CGAL-S"};
+static const char* pipe_short_name[NUM_PIPE_METHODS] = {"plain", "WJ", "WJ-T", "CGAL-S"};
 
 struct Pipe_result
 {
@@ -398,7 +406,9 @@ static std::vector<Point> cgal_jet_smooth(const std::vector<Point>& in, std::siz
   return out;
 }
 
-struct Pipe_output { std::string block, target, dat; double seconds = 0; };
+/// The tables of the section "Noisy scans: denoise, then estimate", each with its name (accuracy.pipeline_*).
+typedef std::vector<std::pair<std::string, WB::Csv_table> > Named_tables;
+struct Pipe_output { Named_tables tables; double seconds = 0; };
 
 typedef std::vector<std::unique_ptr<WB::Surface> > Surfaces;
 
@@ -435,8 +445,7 @@ struct Denoise_cfg
   std::vector<std::size_t> K2s; std::vector<double> r2s;
 };
 
-/// The section "Noisy scans: denoise, then estimate": runs the pipelines on their grid, then writes the section,
-/// its line in "Targets" and the data file.
+/// The section "Noisy scans: denoise, then estimate": runs the pipelines on their grid, then makes its tables.
 class Noisy_pipeline
 {
 public:
@@ -461,16 +470,14 @@ private:
                           int passes = 0) const;
   Common common_best(int method, double sigma) const;
   const Pipe_result* find_config(const Pipe_result& proto, const std::string& S, double sigma) const;
-  // report
-  void write_introduction(std::ostream& md, double seconds) const;
-  Targets_met write_best_per_surface(std::ostream& md) const;
-  void write_passes(std::ostream& md) const;
-  Common write_common_setting(std::ostream& md) const;
-  void write_point_set_check(std::ostream& md, const Pipe_result& c) const;
-  std::string point_set_check_row(std::size_t s, const Pipe_result& c) const;
-  std::string target_block(const Targets_met& met) const;
-  void write_all_pipelines(std::ostream& md) const;
-  std::string data_file() const;
+  // tables (accuracy.pipeline_*.csv)
+  WB::Csv_table best_per_surface_table(Targets_met& met) const;
+  WB::Csv_table passes_table() const;
+  WB::Csv_table common_setting_table(const Common& cw, const Common& cc) const;
+  WB::Csv_table point_set_check_table(const Pipe_result& c) const;
+  std::vector<std::string> point_set_check_row(std::size_t s, const Pipe_result& c) const;
+  WB::Csv_table all_pipelines_table() const;
+  WB::Csv_table grid_table() const;
 
   const Options& o;
   const Surfaces& surfaces;
@@ -493,20 +500,29 @@ Pipe_output Noisy_pipeline::run()
 
   Pipe_output out;
   out.seconds = total.time();
-  std::ostringstream md, tg;
-  write_introduction(md, out.seconds);
   if(std::find(sigmas.begin(), sigmas.end(), target_sigma) != sigmas.end())
   {
-    const Targets_met met = write_best_per_surface(md);
-    write_passes(md);
-    const Common cbest = write_common_setting(md);
-    if(cbest.proto) write_point_set_check(md, *cbest.proto);
-    tg << target_block(met);
+    Targets_met met;
+    out.tables.emplace_back("accuracy.pipeline_best", best_per_surface_table(met));
+    std::cout << "noisy pipeline, sigma = " << target_sigma << "%: WJ H RMSE <= half of plain CGAL (a) on " << met.a
+              << " / " << surfaces.size() << " surfaces, of CGAL-S (b) on " << met.b
+              << ", of plain CGAL r <= 0.4 (a') on " << met.a2 << "\n";
+    out.tables.emplace_back("accuracy.pipeline_passes", passes_table());
+    const Common cw = common_best(PIPE_WJ, target_sigma), cwt = common_best(PIPE_WJ_T, target_sigma),
+                 cc = common_best(PIPE_CGAL_S, target_sigma);
+    const Common& cbest = (cwt.proto && cwt.score < cw.score) ? cwt : cw;
+    std::cout << "one setting for every surface: WJ "
+              << (cbest.proto ? std::string(pipe_name[cbest.proto->method]) + ", " + config(*cbest.proto) : "-")
+              << " (geometric mean ratio " << fmt(std::exp(cbest.score)) << "); CGAL-S "
+              << (cc.proto ? config(*cc.proto) : "-") << " (" << fmt(std::exp(cc.score)) << ")\n";
+    out.tables.emplace_back("accuracy.pipeline_one_setting", common_setting_table(cbest, cc));
+    if(cbest.proto) out.tables.emplace_back("accuracy.pipeline_one_setting_2", point_set_check_table(*cbest.proto));
   }
-  write_all_pipelines(md);
-  out.block = md.str();
-  out.target = tg.str();
-  out.dat = data_file();
+  out.tables.emplace_back("accuracy.pipeline_all_best", all_pipelines_table());
+  std::cout << "time: Wavejet denoising " << fmt(seconds_wj) << " s (" << wj_unfitted << " point-fits not fitted, "
+            << wj_clamped << " clamped), CGAL jet smoothing " << fmt(seconds_cgal) << " s, estimation "
+            << fmt(seconds_est) << " s\n";
+  out.tables.emplace_back("accuracy.pipeline_grid", grid_table());
   return out;
 }
 
@@ -669,49 +685,13 @@ const Pipe_result* Noisy_pipeline::find_config(const Pipe_result& proto, const s
   return nullptr;
 }
 
-// ---- Report -------------------------------------------------------------------------------------
+// ---- Tables -------------------------------------------------------------------------------------
 
-void Noisy_pipeline::write_introduction(std::ostream& md, double seconds) const
+/// "sigma = 0.5%: best setting per surface"; counts in `met` on how many surfaces each target is met.
+WB::Csv_table Noisy_pipeline::best_per_surface_table(Targets_met& met) const
 {
-  md << "<!-- noisy-pipeline-begin -->\n## Noisy scans: denoise, then estimate\n\n"
-     << "(Written by `build/bench/benchmark/Wavejets/" << o.command << "` on " << WB::machine_description() << ", run time " << fmt(seconds, 3) << " s; a default run keeps this block, `--noisy-pipeline` regenerates it"
-        " together with the rest.)\n\n"
-     << "Pipelines, on the same noisy data sets (" << o.points << " points, seeds as above) and the same " << o.eval
-     << " evaluation points:\n\n"
-     << "| name | what |\n| --- | --- |\n"
-     << "| plain CGAL | `Monge_via_jet_fitting` of degree D in radius r on the noisy points (the CGAL column above; WJ gives the"
-        " same numbers). Comparator (a): r in {0.1, 0.15, 0.2}, D in {2, 3}; (a'): r up to 0.4 |\n"
-     << "| WJ | `wavejet_enhance_positions(points, 0, 1.0, order(K1).neighbor_radius(r1))` (gain 1: every point projected"
-        " onto its Wavejet), once or twice, then the default Wavejet fit (the core of `wavejet_estimate_curvatures`) of order"
-        " K2 in radius r2 on the projected points |\n"
-     << "| WJ-T | WJ with `curvature_frame(TANGENT_FRAME)` in the estimation step |\n"
-     << "| CGAL-S | comparator (b): CGAL jet smoothing of degree K1 in radius r1 (the computation of"
-        " `CGAL::jet_smooth_point_set`: `Monge_via_jet_fitting(K1, 2).origin()` of the neighborhood, query point first),"
-        " once or twice, then `Monge_via_jet_fitting` of degree K2 in radius r2 on the smoothed points |\n\n"
-     << "Grid (denoising pipelines): at sigma = 0.5%, K1 in {2, 3, 4}, r1 in {0.1, 0.15, 0.2}, 1 or 2 passes, K2 in {2, 3},"
-        " r2 in {0.1, 0.15, 0.2}; at the other noise levels (to keep the run near 5 minutes) only the best common setting of"
-        " each pipeline at sigma = 0.5% (see \"One setting for every surface\"); plain CGAL always on its full grid. Errors are measured at the evaluation points' current positions (noisy for plain CGAL, projected for the"
-        " pipelines) against the exact truth at the surface point of that position (`Surface::surface_point`: exact closest"
-        " point for sphere, torus and cylinder; the generators' Newton projection along the gradient for the ellipsoid and"
-        " Goursat surface; radial projection for the paper shape). With this rule plain CGAL's numbers differ slightly from"
-        " the tables above, which use the truth of the original sample's surface point.\n\n"
-     << "Why not `CGAL::jet_smooth_point_set` itself: in CGAL 5.5.1 with `neighbor_radius` its sphere query does not return"
-        " the query point first, and `Monge_via_jet_fitting` takes the first point as the origin, so each point is replaced"
-        " by the projection of an arbitrary neighbor (clean unit sphere, 20000 points, degree 2: mean motion 0.082 at"
-        " r = 0.1 and 0.18 at r = 0.2, instead of ~1e-6 in k-nearest mode). CGAL-S runs the same computation on the"
-        " package's radius query, query point first.\n\n";
-}
-
-/// Table "best setting per surface" at sigma = 0.5%; returns on how many surfaces each target is met.
-Noisy_pipeline::Targets_met Noisy_pipeline::write_best_per_surface(std::ostream& md) const
-{
-  md << "### sigma = 0.5%: best setting per surface\n\n"
-     << "Best H RMSE over the grid of each pipeline (oracle choice per surface, as in the Targets table). 'ratio a' ="
-        " WJ / plain CGAL (r <= 0.2), 'ratio b' = WJ / CGAL-S, 'ratio a'' = WJ / plain CGAL with r up to 0.4. WJ = best of"
-        " WJ and WJ-T.\n\n"
-     << "| surface | plain CGAL (a): H (setting) | plain CGAL r <= 0.4 (a') | CGAL-S (b) | WJ pipeline | ratio a | ratio b | ratio a' | WJ / (a) <= 0.5? |\n"
-     << "| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
-  Targets_met met;
+  WB::Csv_table table({"surface", "plain CGAL (a): H (setting)", "plain CGAL r <= 0.4 (a')", "CGAL-S (b)",
+                       "WJ pipeline", "ratio a", "ratio b", "ratio a'", "WJ / (a) <= 0.5?"});
   for(const auto& S : surfaces)
   {
     const Pipe_result* a = best(S->name(), target_sigma, {PIPE_PLAIN}, 0.2);
@@ -721,73 +701,52 @@ Noisy_pipeline::Targets_met Noisy_pipeline::write_best_per_surface(std::ostream&
     const bool ok_a = a && w && w->res.H <= 0.5 * a->res.H, ok_b = b && w && w->res.H <= 0.5 * b->res.H,
                ok_a2 = a2 && w && w->res.H <= 0.5 * a2->res.H;
     met.a += ok_a; met.b += ok_b; met.a2 += ok_a2;
-    md << "| " << S->name() << " | " << H_of(a) << " (" << (a ? config(*a) : "-") << ") | " << H_of(a2) << " ("
-       << (a2 ? config(*a2) : "-") << ") | " << H_of(b) << " (" << (b ? config(*b) : "-") << ") | " << H_of(w) << " ("
-       << (w ? std::string(pipe_name[w->method]) + ", " + config(*w) : "-") << ") | " << H_ratio(w, a) << " | "
-       << H_ratio(w, b) << " | " << H_ratio(w, a2) << " | " << (ok_a ? "yes" : "no") << " |\n";
+    table.add_row({S->name(), H_of(a) + " (" + (a ? config(*a) : "-") + ")",
+                   H_of(a2) + " (" + (a2 ? config(*a2) : "-") + ")", H_of(b) + " (" + (b ? config(*b) : "-") + ")",
+                   H_of(w) + " (" + (w ? std::string(pipe_name[w->method]) + ", " + config(*w) : "-") + ")",
+                   H_ratio(w, a), H_ratio(w, b), H_ratio(w, a2), ok_a ? "yes" : "no"});
   }
-  md << "\nAt most half the H RMSE: against plain CGAL jets (a) on " << met.a << " / " << surfaces.size()
-     << " surfaces; against CGAL smoothing + jets (b) on " << met.b << " / " << surfaces.size()
-     << "; against plain CGAL jets with radii up to 0.4 (a') on " << met.a2 << " / " << surfaces.size() << ".\n\n";
-  return met;
+  return table;
 }
 
-void Noisy_pipeline::write_passes(std::ostream& md) const
+/// "sigma = 0.5%: one pass or two": best H RMSE with exactly 1 / 2 denoising passes.
+WB::Csv_table Noisy_pipeline::passes_table() const
 {
-  md << "### sigma = 0.5%: one pass or two\n\nBest H RMSE with exactly 1 / 2 denoising passes (rest of the grid free).\n\n"
-     << "| surface | WJ 1 pass | WJ 2 passes | CGAL-S 1 pass | CGAL-S 2 passes |\n| --- | --- | --- | --- | --- |\n";
+  WB::Csv_table table({"surface", "WJ 1 pass", "WJ 2 passes", "CGAL-S 1 pass", "CGAL-S 2 passes"});
   for(const auto& S : surfaces)
-    md << "| " << S->name() << " | " << H_of(best(S->name(), target_sigma, {PIPE_WJ, PIPE_WJ_T}, 0.2, 1)) << " | "
-       << H_of(best(S->name(), target_sigma, {PIPE_WJ, PIPE_WJ_T}, 0.2, 2)) << " | "
-       << H_of(best(S->name(), target_sigma, {PIPE_CGAL_S}, 0.2, 1)) << " | "
-       << H_of(best(S->name(), target_sigma, {PIPE_CGAL_S}, 0.2, 2)) << " |\n";
-  md << "\n";
+    table.add_row({S->name(), H_of(best(S->name(), target_sigma, {PIPE_WJ, PIPE_WJ_T}, 0.2, 1)),
+                   H_of(best(S->name(), target_sigma, {PIPE_WJ, PIPE_WJ_T}, 0.2, 2)),
+                   H_of(best(S->name(), target_sigma, {PIPE_CGAL_S}, 0.2, 1)),
+                   H_of(best(S->name(), target_sigma, {PIPE_CGAL_S}, 0.2, 2))});
+  return table;
 }
 
-/// Table "One setting for every surface"; returns the common WJ setting (best of WJ and WJ-T).
-Noisy_pipeline::Common Noisy_pipeline::write_common_setting(std::ostream& md) const
+/// "One setting for every surface": the common WJ setting `cw` and CGAL-S setting `cc` at every noise level.
+WB::Csv_table Noisy_pipeline::common_setting_table(const Common& cw, const Common& cc) const
 {
-  const Common cw = common_best(PIPE_WJ, target_sigma), cwt = common_best(PIPE_WJ_T, target_sigma),
-               cc = common_best(PIPE_CGAL_S, target_sigma);
-  const Common& cbest = (cwt.proto && cwt.score < cw.score) ? cwt : cw;
-  md << "### One setting for every surface\n\nThe single grid setting of each pipeline with the smallest geometric mean,"
-        " over the six surfaces at sigma = 0.5%, of its H RMSE divided by plain CGAL's best (r <= 0.2): WJ: "
-     << (cbest.proto ? std::string(pipe_name[cbest.proto->method]) + ", " + config(*cbest.proto) : "-") << " (geometric mean ratio "
-     << fmt(std::exp(cbest.score)) << "); CGAL-S: " << (cc.proto ? config(*cc.proto) : "-") << " (" << fmt(std::exp(cc.score))
-     << "). Those two settings at every noise level (H RMSE; plain CGAL: its best over D in {2, 3}, r <= 0.2, at that noise"
-        " level); 'residual' = RMS distance of all inliers to the surface after denoising (input: before).\n\n"
-     << "| surface | sigma % | plain CGAL (a) | residual input | WJ | residual WJ | CGAL-S | residual CGAL-S | WJ / (a) | WJ / CGAL-S |\n"
-     << "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+  WB::Csv_table table({"surface", "sigma %", "plain CGAL (a)", "residual input", "WJ", "residual WJ", "CGAL-S",
+                       "residual CGAL-S", "WJ / (a)", "WJ / CGAL-S"});
   for(const auto& S : surfaces)
     for(double sigma : sigmas)
     {
       const Pipe_result* a = best(S->name(), sigma, {PIPE_PLAIN}, 0.2);
-      const Pipe_result* w = cbest.proto ? find_config(*cbest.proto, S->name(), sigma) : nullptr;
+      const Pipe_result* w = cw.proto ? find_config(*cw.proto, S->name(), sigma) : nullptr;
       const Pipe_result* c = cc.proto ? find_config(*cc.proto, S->name(), sigma) : nullptr;
-      md << "| " << S->name() << " | " << sigma << " | " << H_of(a) << " | " << (a ? fmt(a->residual) : "-") << " | "
-         << H_of(w) << " | " << (w ? fmt(w->residual) : "-") << " | " << H_of(c) << " | " << (c ? fmt(c->residual) : "-")
-         << " | " << H_ratio(w, a) << " | " << H_ratio(w, c) << " |\n";
+      table.add_row({S->name(), num(sigma), H_of(a), a ? fmt(a->residual) : "-", H_of(w), w ? fmt(w->residual) : "-",
+                     H_of(c), c ? fmt(c->residual) : "-", H_ratio(w, a), H_ratio(w, c)});
     }
-  md << "\n";
-  return cbest;
+  return table;
 }
 
 /// The point-set functions themselves on all points at the common WJ setting `c` (sigma = 0.5%).
-void Noisy_pipeline::write_point_set_check(std::ostream& md, const Pipe_result& c) const
+WB::Csv_table Noisy_pipeline::point_set_check_table(const Pipe_result& c) const
 {
-  md << "The point-set functions on all " << o.points << " points at that WJ setting (sigma = 0.5%): "
-     << c.passes << " x `wavejet_enhance_positions<Parallel_if_available_tag>(points, 0, 1.0, order(" << c.K1
-     << ").neighbor_radius(" << c.r1 << "))`, then `wavejet_estimate_curvatures(points, 0, order(" << c.K2
-     << ").neighbor_radius(" << c.r2 << ")" << (c.method == PIPE_WJ_T ? ".curvature_frame(TANGENT_FRAME)" : "")
-     << ".normal_map(...)...)` (original samples' normals, orienting only). H RMSE over all inliers at least r2 from a"
-        " border; 'max diff': largest |H| difference from the Wavejet_fitting values of the grid at the evaluation points"
-        " (expected 0).\n\n| surface | H RMSE (all points) | H RMSE (grid, eval points) | max diff | time (s) |\n"
-        "| --- | --- | --- | --- | --- |\n";
-  for(std::size_t s = 0; s < surfaces.size(); ++s) md << point_set_check_row(s, c);
-  md << "\n";
+  WB::Csv_table table({"surface", "H RMSE (all points)", "H RMSE (grid, eval points)", "max diff", "time (s)"});
+  for(std::size_t s = 0; s < surfaces.size(); ++s) table.add_row(point_set_check_row(s, c));
+  return table;
 }
 
-std::string Noisy_pipeline::point_set_check_row(std::size_t s, const Pipe_result& c) const
+std::vector<std::string> Noisy_pipeline::point_set_check_row(std::size_t s, const Pipe_result& c) const
 {
   const WB::Surface& S = *surfaces[s];
   const Dataset d = make_dataset(S, s, o, target_sigma, 0.);
@@ -821,34 +780,14 @@ std::string Noisy_pipeline::point_set_check_row(std::size_t s, const Pipe_result
   for(std::size_t i = 0; i < ev.size(); ++i)
     if(ev[i].ok) max_diff = std::max(max_diff, std::abs((c.method == PIPE_WJ_T ? ev[i].tH : ev[i].H) - H[d.eval[i]]));
   const Pipe_result* g = find_config(c, S.name(), target_sigma);
-  std::ostringstream row;
-  row << "| " << S.name() << " | " << fmt(a.rmse_H()) << " | " << H_of(g) << " | " << fmt(max_diff, 2) << " | "
-      << fmt(seconds) << " |\n";
-  return row.str();
+  return {S.name(), fmt(a.rmse_H()), H_of(g), fmt(max_diff, 2), fmt(seconds)};
 }
 
-/// The pipeline's line in the section "Targets".
-std::string Noisy_pipeline::target_block(const Targets_met& met) const
+/// "sigma = 0.5%: all pipelines, best setting per surface": WJ and WJ-T separately.
+WB::Csv_table Noisy_pipeline::all_pipelines_table() const
 {
-  std::ostringstream tg;
-  tg << "<!-- pipeline-target-begin -->\n**Noisy data, documented denoise-then-estimate pipeline** (section \"Noisy scans:"
-        " denoise, then estimate\"; best pipeline setting per surface at sigma = 0.5%): WJ H RMSE <= half of plain CGAL"
-        " jets' (same radii/degrees) on "
-     << met.a << " / " << surfaces.size() << " surfaces"
-     << (met.a == surfaces.size() ? " — **met against plain CGAL jets**" : met.a ? " — **partly met against plain CGAL jets**" : " — **not met**")
-     << "; against CGAL's own smoothing + jets (the same two-pass recipe) on " << met.b << " / " << surfaces.size()
-     << " (" << (met.b == 0 ? "**not met**: the gain comes from smoothing, not from Wavejets" : "see the table") << ");"
-        " against plain CGAL jets allowed radii up to 0.4 on " << met.a2 << " / " << surfaces.size() << ".\n"
-     << "<!-- pipeline-target-end -->";
-  return tg.str();
-}
-
-/// sigma = 0.5%: WJ and WJ-T separately, then the run times; closes the section.
-void Noisy_pipeline::write_all_pipelines(std::ostream& md) const
-{
-  md << "### sigma = 0.5%: all pipelines, best setting per surface\n\n"
-     << "| surface | sigma % | plain CGAL (a) | plain CGAL r <= 0.4 (a') | CGAL-S (b) | WJ | WJ-T | WJ / (a) | WJ / (b) |\n"
-     << "| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+  WB::Csv_table table({"surface", "sigma %", "plain CGAL (a)", "plain CGAL r <= 0.4 (a')", "CGAL-S (b)", "WJ", "WJ-T",
+                       "WJ / (a)", "WJ / (b)"});
   auto cell = [&](const Pipe_result* x) { return x ? fmt(x->res.H) + " (" + config(*x) + ")" : std::string("-"); };
   for(const auto& S : surfaces)
   {
@@ -859,24 +798,22 @@ void Noisy_pipeline::write_all_pipelines(std::ostream& md) const
     const Pipe_result* w = best(S->name(), sigma, {PIPE_WJ}, 0.2);
     const Pipe_result* wt = best(S->name(), sigma, {PIPE_WJ_T}, 0.2);
     const Pipe_result* wb = (wt && (!w || wt->res.H < w->res.H)) ? wt : w;
-    md << "| " << S->name() << " | " << sigma << " | " << cell(a) << " | " << cell(a2) << " | " << cell(b) << " | "
-       << cell(w) << " | " << cell(wt) << " | " << H_ratio(wb, a) << " | " << H_ratio(wb, b) << " |\n";
+    table.add_row({S->name(), num(sigma), cell(a), cell(a2), cell(b), cell(w), cell(wt), H_ratio(wb, a),
+                   H_ratio(wb, b)});
   }
-  md << "\nTime: Wavejet denoising " << fmt(seconds_wj) << " s (" << wj_unfitted << " point-fits not fitted, " << wj_clamped
-     << " clamped, over all passes), CGAL jet smoothing " << fmt(seconds_cgal) << " s, estimation at the evaluation points "
-     << fmt(seconds_est) << " s. All rows: `accuracy_pipeline.dat`.\n<!-- noisy-pipeline-end -->";
+  return table;
 }
 
-/// accuracy_pipeline.dat: every row.
-std::string Noisy_pipeline::data_file() const
+/// Every row of the grid, full precision.
+WB::Csv_table Noisy_pipeline::grid_table() const
 {
-  std::ostringstream dat;
-  dat << "# surface sigma_pct method K1 r1 passes K2 r2 H_rmse K_rmse k1_rmse k2_rmse angle_mean not_fitted residual\n";
+  WB::Csv_table table({"surface", "sigma_pct", "method", "K1", "r1", "passes", "K2", "r2", "H_rmse", "K_rmse",
+                       "k1_rmse", "k2_rmse", "angle_mean", "not_fitted", "residual"});
   for(const Pipe_result& x : rows)
-    dat << x.surface << " " << x.sigma << " " << pipe_dat_name[x.method] << " " << x.K1 << " " << x.r1 << " " << x.passes << " "
-        << x.K2 << " " << x.r2 << " " << x.res.H << " " << x.res.K << " " << x.res.k1 << " " << x.res.k2 << " "
-        << x.res.mean_angle << " " << x.res.failed << " " << x.residual << "\n";
-  return dat.str();
+    table.add_row({x.surface, num(x.sigma), pipe_short_name[x.method], std::to_string(x.K1), num(x.r1),
+                   std::to_string(x.passes), std::to_string(x.K2), num(x.r2), num(x.res.H), num(x.res.K), num(x.res.k1),
+                   num(x.res.k2), num(x.res.mean_angle), std::to_string(x.res.failed), num(x.residual)});
+  return table;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -885,28 +822,25 @@ std::string Noisy_pipeline::data_file() const
 /// Reads the options; returns false when the program should stop at once with `exit_code`.
 static bool parse_command_line(int argc, char** argv, Options& o, int& exit_code)
 {
-  o.out = ".";
-  std::ostringstream cmd;
-  cmd << "bench_accuracy";
   bool points_given = false, eval_given = false;
   for(int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
-    cmd << " " << a;
     if(a == "--quick") o.quick = true;
     else if(a == "--noisy-pipeline") o.pipeline = true;
     else if(a == "--noisy-pipeline-only") o.pipeline = o.pipeline_only = true;
-    else if(a == "--no-plot") o.plot = false;
-    else if(a == "--points" && i + 1 < argc) { o.points = std::strtoul(argv[++i], nullptr, 10); cmd << " " << argv[i]; points_given = true; }
-    else if(a == "--eval" && i + 1 < argc) { o.eval = std::strtoul(argv[++i], nullptr, 10); cmd << " " << argv[i]; eval_given = true; }
-    else if(a == "--out" && i + 1 < argc) { o.out = argv[++i]; cmd << " " << argv[i]; }
+    else if(a == "--points" && i + 1 < argc) { o.points = std::strtoul(argv[++i], nullptr, 10); points_given = true; }
+    else if(a == "--eval" && i + 1 < argc) { o.eval = std::strtoul(argv[++i], nullptr, 10); eval_given = true; }
+    else if(a == "--csv-dir" && i + 1 < argc) { o.csv_dir = argv[++i]; o.csv_dir_given = true; }
     else
     {
-      std::cerr << "usage: bench_accuracy [--quick] [--points N] [--eval M] [--out DIR] [--no-plot]\n"
+      std::cerr << "usage: bench_accuracy [--quick] [--points N] [--eval M] [--csv-dir DIR]\n"
                    "                      [--noisy-pipeline | --noisy-pipeline-only]\n"
-                   "  --quick: 8000 points, 100 evaluation points, K in {2,4,6}, sigma in {0, 0.5%}\n"
+                   "  --quick: 8000 points, 100 evaluation points, K in {2,4,6}, sigma in {0, 0.5%};\n"
+                   "           writes nothing unless --csv-dir\n"
+                   "  --csv-dir DIR: write the CSV files there (default: csv/ beside the source)\n"
                    "  --noisy-pipeline: also run the denoise-then-estimate section (sigma 0.5% only with --quick)\n"
-                   "  --noisy-pipeline-only: run only that section, merge it into the existing DIR/accuracy.md\n";
+                   "  --noisy-pipeline-only: run only that section (its CSV files and its run time in the context)\n";
       exit_code = a == "--help" || a == "-h" ? 0 : 1;
       return false;
     }
@@ -916,55 +850,13 @@ static bool parse_command_line(int argc, char** argv, Options& o, int& exit_code
     if(!points_given) o.points = 8000;
     if(!eval_given) o.eval = 100;
   }
-  o.command = cmd.str();
-  if(o.points < 1000 || o.eval < 10) { std::cerr << "need --points >= 1000 and --eval >= 10\n"; exit_code = 1; return false; }
-  return true;
-}
-
-// ---------------------------------------------------------------------------------------------
-// Blocks of an existing report, kept across runs
-
-static std::string read_text_file(const std::string& path)
-{
-  std::ifstream f(path);
-  std::stringstream buf;
-  buf << f.rdbuf();
-  return buf.str();
-}
-
-/// The block `<!-- name-begin -->` ... `<!-- name-end -->` of `text`, markers included; empty if absent.
-static std::string marked_block(const std::string& text, const std::string& name)
-{
-  const std::string begin = "<!-- " + name + "-begin -->", end = "<!-- " + name + "-end -->";
-  const std::size_t b = text.find(begin), e = text.find(end);
-  if(b != std::string::npos && e != std::string::npos && e > b) return text.substr(b, e + end.size() - b);
-  return std::string();
-}
-
-/// Replaces the block `name` of `text` by `block`, or inserts it before `before` (at the end if absent).
-static void put_block(std::string& text, const std::string& name, const std::string& block, const std::string& before)
-{
-  if(block.empty()) return;
-  const std::string begin = "<!-- " + name + "-begin -->", end = "<!-- " + name + "-end -->";
-  const std::size_t b = text.find(begin), e = text.find(end);
-  if(b != std::string::npos && e != std::string::npos && e > b) text.replace(b, e + end.size() - b, block);
-  else
+  if(o.points < 1000 || o.eval < 10)
   {
-    const std::size_t at = text.find(before);
-    if(at == std::string::npos) text += "\n" + block + "\n";
-    else text.insert(at, block + "\n\n");
+    std::cerr << "need --points >= 1000 and --eval >= 10\n";
+    exit_code = 1;
+    return false;
   }
-}
-
-/// --noisy-pipeline-only: merges the section and its target line into the existing report.
-static void merge_pipeline_section(const Options& o, const std::string& old_report, const Pipe_output& pipe)
-{
-  std::string text = old_report;
-  if(text.empty()) text = "# Accuracy of Wavejets against CGAL jets on surfaces with exact curvature\n\n";
-  put_block(text, "pipeline-target", pipe.target, "Time spent per estimator in the position-noise sweep");
-  put_block(text, "noisy-pipeline", pipe.block, "## Which settings to use");
-  std::ofstream(o.out + "/accuracy.md") << text;
-  std::cout << "merged the noisy-pipeline section into " << o.out << "/accuracy.md (" << pipe.seconds << " s)\n";
+  return true;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -1245,127 +1137,70 @@ static void run_point_set_functions(const Options& o, const Surfaces& surfaces, 
 }
 
 // ---------------------------------------------------------------------------------------------
-// Data file and plot
+// Tables of experiments 1-4 (accuracy.*.csv)
 
-/// accuracy_noise.dat: per surface block, per sigma: best H RMSE over (K, r) of WJ, WJ-R3, WJ-T, CGAL,
-/// best mean normal angle over (K, r) of WJ, WJ-R3, CGAL and PCA.
-static void write_noise_data(const std::string& path, const Surfaces& surfaces, const Experiments& ex)
+/// "Summary": per surface and noise level, the best setting of each estimator.
+static WB::Csv_table summary_table(const Surfaces& surfaces, const Experiments& ex)
 {
-  std::ofstream f(path);
-  f << "# sigma_pct  H_WJ H_WJ-R3 H_WJ-T H_CGAL  angle_WJ angle_WJ-R3 angle_CGAL angle_PCA  (best over K, r)\n";
+  WB::Csv_table table({"surface", "sigma %", "WJ: H (K, r)", "WJ-R3", "WJ-T", "CGAL", "normal WJ (deg)", "WJ-R3", "CGAL",
+                       "PCA"});
   for(const auto& S : surfaces)
-  {
-    f << "# " << S->name() << "\n";
     for(double sigma : ex.sigmas)
     {
-      f << sigma;
+      std::vector<std::string> row = {S->name(), num(sigma)};
       for(int e : {WJ, WJ_R3, WJ_T, CGAL_JET})
       {
         const Best b = ex.best_of(S->name(), sigma, ex.radii, {e});
-        if(b.K == 0) f << " NaN";
-        else f << " " << b.H;
+        row.push_back(b.K == 0 ? std::string("-") : fmt(b.H) + " (" + std::to_string(b.K) + ", " + num(b.r) + ")");
       }
-      for(int e : {WJ, WJ_R3, CGAL_JET, PCA}) f << " " << ex.best_angle(S->name(), sigma, e);
-      f << "\n";
+      for(int e : {WJ, WJ_R3, CGAL_JET, PCA})
+      {
+        double br = 0;
+        std::size_t bk = 0;
+        const double best = ex.best_angle(S->name(), sigma, e, &br, &bk);
+        row.push_back(fmt(best) + " (" + (e == PCA ? std::string("-") : std::to_string(bk)) + ", " + num(br) + ")");
+      }
+      table.add_row(row);
     }
-    f << "\n\n";
-  }
+  return table;
 }
 
-/// The gnuplot script; it names the data and the image relative to its own directory.
-static void write_plot_script(const std::string& path, const std::string& dat, const std::string& png,
-                              const Surfaces& surfaces)
+/// The summary's minima at full precision, for the plot: best H RMSE over (K, r) of WJ, WJ-R3, WJ-T, CGAL (NaN where
+/// more than 1% of the points are not fitted), best mean normal angle of WJ, WJ-R3, CGAL and PCA.
+static WB::Csv_table noise_best_table(const Surfaces& surfaces, const Experiments& ex)
 {
-  std::ofstream f(path);
-  f << "# gnuplot script written by bench_accuracy; run from its directory: gnuplot accuracy.gp\n"
-    << "set terminal pngcairo size 1800,1000 font 'DejaVu Sans,11'\n"
-    << "set output '" << png << "'\n"
-    << "set multiplot layout 2," << surfaces.size()
-    << " title 'Wavejets vs CGAL jets: error against position noise (best over order K and radius r for each estimator)'\n"
-    << "set termoption noenhanced\nset logscale y\nset format y '%.0e'\nset grid\nset key bottom right font ',9'\n"
-    << "set xlabel 'noise sigma (% of bbox diagonal)'\n";
-  for(std::size_t s = 0; s < surfaces.size(); ++s)
-    f << "set title '" << surfaces[s]->name() << ": RMSE of H'\n"
-      << "plot '" << dat << "' index " << s << " using 1:2 w lp lw 2 pt 7 title 'WJ', '' index " << s
-      << " using 1:3 w lp lw 2 pt 5 title 'WJ-R3', '' index " << s << " using 1:4 w lp lw 2 pt 9 dt 2 title 'WJ-T', '' index "
-      << s << " using 1:5 w lp lw 2 pt 4 dt 3 title 'CGAL jet'\n";
-  for(std::size_t s = 0; s < surfaces.size(); ++s)
-    f << "set title '" << surfaces[s]->name() << ": mean normal angle (deg)'\n"
-      << "plot '" << dat << "' index " << s << " using 1:6 w lp lw 2 pt 7 title 'WJ', '' index " << s
-      << " using 1:7 w lp lw 2 pt 5 title 'WJ-R3', '' index " << s << " using 1:8 w lp lw 2 pt 4 dt 3 title 'CGAL jet', '' index "
-      << s << " using 1:9 w lp lw 2 pt 6 dt 4 title 'PCA'\n";
-  f << "unset multiplot\n";
+  WB::Csv_table table({"surface", "sigma %", "H WJ", "H WJ-R3", "H WJ-T", "H CGAL", "angle WJ", "angle WJ-R3",
+                       "angle CGAL", "angle PCA"});
+  for(const auto& S : surfaces)
+    for(double sigma : ex.sigmas)
+    {
+      std::vector<std::string> row = {S->name(), num(sigma)};
+      for(int e : {WJ, WJ_R3, WJ_T, CGAL_JET})
+      {
+        const Best b = ex.best_of(S->name(), sigma, ex.radii, {e});
+        row.push_back(b.K == 0 ? std::string("NaN") : num(b.H));
+      }
+      for(int e : {WJ, WJ_R3, CGAL_JET, PCA}) row.push_back(num(ex.best_angle(S->name(), sigma, e)));
+      table.add_row(row);
+    }
+  return table;
 }
 
-// ---------------------------------------------------------------------------------------------
-// Report (accuracy.md)
-
-/// Title, command, machine, setup and the estimators.
-static void write_introduction(std::ostream& md, const Options& o, const Surfaces& surfaces, const Experiments& ex,
-                               double total_seconds)
+/// The numbers that the prose of accuracy.md quotes outside its tables, printed for its template: the mean
+/// neighborhood sizes and the clean-data target (on how many (surface, r, K) WJ's H RMSE and mean normal angle are at
+/// most CGAL's).
+static void print_prose_numbers(const Surfaces& surfaces, const Experiments& ex)
 {
-  std::time_t now = std::time(nullptr);
-  char date[64];
-  std::strftime(date, sizeof date, "%Y-%m-%d", std::gmtime(&now));
-  md << "# Accuracy of Wavejets against CGAL jets on surfaces with exact curvature\n\n"
-     << "Generated by `benchmark/Wavejets/bench_accuracy.cpp` on " << date << ". Command (from the repository root):\n\n"
-     << "    cmake -S . -B build/bench -DCMAKE_BUILD_TYPE=Release && cmake --build build/bench --target bench_accuracy -j1\n"
-     << "    build/bench/benchmark/Wavejets/" << o.command << "\n\n"
-     << "Machine: " << WB::machine_description() << ". Total run time " << fmt(total_seconds, 3) << " s.\n\n";
-  md << "## Setup\n\n"
-     << "- Surfaces (`test/Wavejets/support/analytic_surfaces.h`), all in [-1, 1]^3 with half-extent 1, " << o.points
-     << " points each, fixed seeds:\n"
-     << "  sphere (R = 1); ellipsoid (semi-axes 1, 0.7, 0.5); torus (R = 0.7, r = 0.3); open cylinder (radius 0.5,"
-        " |z| <= 1); Goursat quartic x^4+y^4+z^4 + a(x^2+y^2+z^2)^2 + b(x^2+y^2+z^2) + c = 0 with a = 0, b = -5, c = 11.8"
-        " (the genus-5 'tanglecube', with saddle regions), scaled by 1/2.266; the paper's shape r = 1 + 0.005 cos(100 phi^2/pi)"
-        " (phi = polar angle; ripple frequency grows from 0 at the north pole to 200 rad/rad at the south pole), scaled by 1/1.005.\n"
-     << "- Uniform density: exact for the sphere (normalized Gaussians), cylinder (uniform angle and height), torus and paper"
-        " shape (area-weighted rejection in the parametrization); thin-shell sampling for the ellipsoid and Goursat surface"
-        " (uniform points with |F|/|grad F| < 3e-3, then Newton projection onto F = 0: uniform up to a relative O(K_G eps^2) < 1e-4).\n"
-     << "- Exact truth: implicit surfaces from the analytic gradient and Hessian (II(t,t) = -t^T Hess t / |grad F|);"
-        " paper shape from the analytic first and second derivatives of its profile curve. Both checked against finite"
-        " differences in `test/Wavejets/test_accuracy.cpp`.\n"
-     << "- Signs: outward normals, curvature positive when bending toward the normal (sphere: H = -1). Estimates are"
-        " oriented by the true normals (Wavejets: seed normal passed to the fit, which only orients the PCA frame;"
-        " CGAL: `Monge_form::comply_wrt_given_normal`).\n"
-     << "- Noise: Gaussian, each coordinate N(0, sigma^2), sigma in % of the bounding-box diagonal (sphere: 0.5% = 0.0173,"
-        " about a third of the smallest radius r = 0.05). Outliers: a fraction of the points moved by a uniform vector of"
-        " a ball of radius 2.5% of the diagonal, excluded from the statistics.\n"
-     << "- Neighborhoods: all points within r (`neighbor_radius(r)`; CGAL gets the very same point list, query point"
-        " first). Mean neighborhood sizes (clean):";
+  std::cout << "mean neighborhood sizes (clean, r =";
+  for(double r : ex.radii) std::cout << " " << r;
+  std::cout << "):";
   for(const auto& S : surfaces)
   {
-    md << " " << S->name() << " ";
-    for(double r : ex.radii) md << (r == ex.radii[0] ? "" : "/") << fmt(ex.mean_neighbors.at({S->name(), r}), 3);
+    std::cout << " " << S->name() << " ";
+    for(double r : ex.radii) std::cout << (r == ex.radii[0] ? "" : "/") << fmt(ex.mean_neighbors.at({S->name(), r}), 3);
   }
-  md << " (r = 0.05/0.1/0.2).\n"
-     << "- Errors over " << o.eval << " evaluation points per surface (random inliers at least 0.2 from a border;"
-        " neighborhoods use all points): RMSE of H, K_G, k1, k2 (signed) and mean / 95th percentile of the unoriented"
-        " normal angle in degrees. Curvature unit: 1 / (half-extent).\n\n"
-     << "Estimators (same neighborhoods, same order K):\n\n"
-     << "| name | what |\n| --- | --- |\n"
-     << "| WJ | `CGAL::Wavejet_fitting` with the defaults of the point-set functions: adaptive order (neighbors_per_coefficient 1.1),"
-        " 2 tangent-plane re-fits, curvature from the first fit (INITIAL_FRAME, the PCA frame = CGAL's least-squares problem),"
-        " normal as `wavejet_estimate_normals` computes it (tangent plane found with order-2 fits, `tangent_plane_order(2)`,"
-        " then the normal of one order-K fit in it) |\n"
-     << "| WJ-R3 | WJ + `robust_iterations(3)` (Tukey IRLS, 3 passes) |\n"
-     << "| WJ-T | WJ + `curvature_frame(TANGENT_FRAME)` (curvature from the corrected tangent-frame fit; normals as WJ) |\n"
-     << "| WJ-fix | adaptive order off: `neighbors_per_coefficient(1.0).minimum_order(K)`: a point whose neighborhood is"
-        " smaller than (K+1)(K+2)/2 is not fitted instead of being fitted at a lower order. It only differs from WJ where some"
-        " neighborhood has fewer than 1.1 (K+1)(K+2)/2 points (here: r = 0.05 with K >= 6 or so); elsewhere it is WJ. |\n"
-     << "| CGAL | `CGAL::Monge_via_jet_fitting`, degree K, Monge degree 2 (its normal is what `jet_estimate_normals` returns);"
-        " where a neighborhood has fewer than (K+1)(K+2)/2 points, the largest degree CGAL accepts |\n"
-     << "| PCA | normal = smallest principal axis of the neighborhood (`pca_estimate_normals`) |\n\n"
-     << "The Wavejet numbers come from `Wavejet_fitting`, the fitting core that `wavejet_estimate_curvatures` and"
-        " `wavejet_estimate_normals` run per point; the last section runs those functions on all points and checks that they"
-        " give the same values.\n\n";
-}
-
-/// "Targets", clean data: WJ (default) vs CGAL at every (surface, r, K).
-static void write_clean_target(std::ostream& md, const Surfaces& surfaces, const Experiments& ex)
-{
+  std::cout << "\n";
   std::size_t clean_total = 0, clean_h_ok = 0, clean_n_ok = 0;
-  std::ostringstream clean_violations;
   double worst_rel = 0.;
   for(const auto& S : surfaces)
     for(double r : ex.radii)
@@ -1377,33 +1212,23 @@ static void write_clean_target(std::ostream& md, const Surfaces& surfaces, const
         const double tol = 1e-9 * (1. + c.H);
         if(w.H <= c.H + tol) ++clean_h_ok;
         else
-        {
-          clean_violations << "  - " << S->name() << " r=" << r << " K=" << K << ": H RMSE WJ " << fmt(w.H, 6)
-                           << " vs CGAL " << fmt(c.H, 6) << "\n";
-        }
+          std::cout << "  clean data, WJ above CGAL: " << S->name() << " r=" << r << " K=" << K << ": H RMSE WJ "
+                    << fmt(w.H, 6) << " vs CGAL " << fmt(c.H, 6) << "\n";
         worst_rel = std::max(worst_rel, std::abs(w.H - c.H) / std::max(c.H, 1e-300));
         if(w.mean_angle <= c.mean_angle * (1. + 1e-9) + 1e-12) ++clean_n_ok;
       }
-  md << "**Clean data, Wavejet error <= CGAL jet error at equal degree and neighborhood, every surface:** RMSE of H: "
-     << clean_h_ok << " / " << clean_total << " (surface, r, K) configurations"
-     << (clean_h_ok == clean_total ? " — **met**" : " — **not met** everywhere") << "; largest relative difference of the"
-        " H RMSE between WJ and CGAL: " << fmt(worst_rel, 2)
-     << " (the default curvature is, by design, CGAL's least-squares problem in the same PCA frame, so equality is the"
-        " expected outcome, not an improvement). Mean normal angle: WJ <= CGAL in " << clean_n_ok << " / " << clean_total
-     << " configurations (the WJ normal is that of the order-K Wavejet fitted in the tangent plane found by order-2 fits, CGAL's that of the jet fitted in the PCA frame).\n";
-  if(clean_h_ok != clean_total) md << "\nConfigurations where WJ's H RMSE is above CGAL's:\n\n" << clean_violations.str();
+  std::cout << "clean data: WJ H RMSE <= CGAL's in " << clean_h_ok << " / " << clean_total
+            << " (surface, r, K); largest relative difference " << fmt(worst_rel, 2)
+            << "; mean normal angle WJ <= CGAL in " << clean_n_ok << " / " << clean_total << "\n";
 }
 
 /// "Targets", noisy data (sigma = 0.5%): best WJ setting vs best CGAL setting, per radius and overall.
-static void write_noisy_target(std::ostream& md, const Surfaces& surfaces, const Experiments& ex)
+static WB::Csv_table targets_table(const Surfaces& surfaces, const Experiments& ex)
 {
   const std::vector<int> wj_set = {WJ, WJ_R3, WJ_T, WJ_FIX};
-  md << "\n**Noisy data (sigma = 0.5%), best Wavejet setting <= half of CGAL jets' H RMSE:**\n\n"
-     << "Best over order K in {" << ex.orders.front() << ".." << ex.orders.back() << "} and estimator variant, at each radius"
-        " (CGAL at its own best degree at the same radius), and overall (best over radii too):\n\n"
-     << "| surface | r | best Wavejet (variant, K) | H RMSE | best CGAL (K) | H RMSE | ratio | <= 0.5? |\n"
-     << "| --- | --- | --- | --- | --- | --- | --- | --- |\n";
   std::size_t half_met = 0, half_total = 0;
+  WB::Csv_table table({"surface", "r", "best Wavejet (variant, K)", "H RMSE", "best CGAL (K)", "H RMSE", "ratio",
+                       "<= 0.5?"});
   for(const auto& S : surfaces)
   {
     std::vector<std::vector<double> > groups;
@@ -1415,92 +1240,40 @@ static void write_noisy_target(std::ostream& md, const Surfaces& surfaces, const
       const bool all = g.size() > 1;
       if(w.K == 0 || c.K == 0)
       {
-        md << "| " << S->name() << " | " << (all ? std::string("best") : fmt(g[0]))
-           << " | - | - | - | - | - | (more than 1% of the points not fitted) |\n";
+        table.add_row({S->name(), all ? std::string("best") : fmt(g[0]), "-", "-", "-", "-", "-",
+                       "(more than 1% of the points not fitted)"});
         continue;
       }
       const double ratio = w.H / c.H;
       if(all) { ++half_total; half_met += ratio <= 0.5; }
-      md << "| " << S->name() << " | " << (all ? std::string("best: ") + fmt(w.r) + " / " + fmt(c.r) : fmt(g[0])) << " | "
-         << estimator_name[w.e] << ", K=" << w.K << " | " << fmt(w.H) << " | K=" << c.K << " | " << fmt(c.H) << " | "
-         << fmt(ratio) << " | " << (ratio <= 0.5 ? "yes" : "no") << " |\n";
+      table.add_row({S->name(), all ? std::string("best: ") + fmt(w.r) + " / " + fmt(c.r) : fmt(g[0]),
+                     std::string(estimator_name[w.e]) + ", K=" + std::to_string(w.K), fmt(w.H),
+                     "K=" + std::to_string(c.K), fmt(c.H), fmt(ratio), ratio <= 0.5 ? "yes" : "no"});
     }
   }
-  md << "\nOverall (best over radii for both): met on " << half_met << " / " << half_total << " surfaces.\n\n";
-}
-
-static void write_full_table_header(std::ostream& os)
-{
-  os << "| surface | r | K | est. | H | K_G | k1 | k2 | angle mean | angle p95 | not fitted | reduced |\n"
-     << "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
-}
-
-static void write_full_table_row(std::ostream& os, const std::string& S, double r, std::size_t K, int e, const Result& x)
-{
-  os << "| " << S << " | " << r << " | " << (e == PCA ? std::string("-") : std::to_string(K)) << " | " << estimator_name[e]
-     << " | " << (x.has_curvature ? fmt(x.H) : "-") << " | " << (x.has_curvature ? fmt(x.K) : "-") << " | "
-     << (x.has_curvature ? fmt(x.k1) : "-") << " | " << (x.has_curvature ? fmt(x.k2) : "-") << " | "
-     << fmt(x.mean_angle) << " | " << fmt(x.p95_angle) << " | " << x.failed << " | "
-     << (e == WJ || e == WJ_R3 || e == WJ_T ? std::to_string(x.reduced) : std::string("-")) << " |\n";
-}
-
-/// "Summary": per surface and noise level, the best setting of each estimator.
-static void write_summary(std::ostream& md, const Surfaces& surfaces, const Experiments& ex)
-{
-  md << "## Summary: best setting per estimator\n\n"
-     << "Per surface and noise level, the smallest H RMSE over (K, r) of each estimator, and the smallest mean normal angle"
-        " over (K, r). Plot: `accuracy.png` (data `accuracy_noise.dat`, script `accuracy.gp`).\n\n"
-     << "| surface | sigma % | WJ: H (K, r) | WJ-R3 | WJ-T | CGAL | normal WJ (deg) | WJ-R3 | CGAL | PCA |\n"
-     << "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
-  for(const auto& S : surfaces)
-    for(double sigma : ex.sigmas)
-    {
-      md << "| " << S->name() << " | " << sigma;
-      for(int e : {WJ, WJ_R3, WJ_T, CGAL_JET})
-      {
-        const Best b = ex.best_of(S->name(), sigma, ex.radii, {e});
-        if(b.K == 0) md << " | -";
-        else md << " | " << fmt(b.H) << " (" << b.K << ", " << b.r << ")";
-      }
-      for(int e : {WJ, WJ_R3, CGAL_JET, PCA})
-      {
-        double br = 0;
-        std::size_t bk = 0;
-        const double best = ex.best_angle(S->name(), sigma, e, &br, &bk);
-        md << " | " << fmt(best) << " (" << (e == PCA ? std::string("-") : std::to_string(bk)) << ", " << br << ")";
-      }
-      md << " |\n";
-    }
-  md << "\n";
+  std::cout << "noisy data (sigma = 0.5%), best WJ <= half of best CGAL H RMSE (best over radii for both): met on "
+            << half_met << " / " << half_total << " surfaces\n";
+  return table;
 }
 
 /// "The point-set functions on all points" (experiment 4).
-static void write_point_set_table(std::ostream& md, const Options& o, const Experiments& ex)
+static WB::Csv_table point_set_table(const Experiments& ex)
 {
-  md << "## The point-set functions on all points (recommended settings)\n\n"
-     << "`wavejet_estimate_curvatures` (true normals as `normal_map`, orienting only) and `wavejet_estimate_normals` on all "
-     << o.points << " points with `neighbor_radius(r)` at the recommended settings (clean: default WJ, K = 6, r = 0.1; sigma = 0.5%:"
-        " default WJ, K = 2, r = 0.2; outputs oriented with the true normals);"
-        " statistics over all inliers at least r from a border. CGAL jets on the same points and neighborhoods at the same"
-        " degree. 'max diff' is the largest difference (H, K_G, normal) between the point-set functions and `Wavejet_fitting`"
-        " at the evaluation points (identical neighborhoods: expected 0).\n\n"
-     << "| surface | sigma % | setting | WJ H | CGAL H | WJ K_G | CGAL K_G | WJ angle mean / p95 | CGAL angle mean / p95 | not fitted | max diff | WJ time (s) |\n"
-     << "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+  WB::Csv_table table({"surface", "sigma %", "setting", "WJ H", "CGAL H", "WJ K_G", "CGAL K_G", "WJ angle mean / p95",
+                       "CGAL angle mean / p95", "not fitted", "max diff", "WJ time (s)"});
   for(const Ps_row& p : ex.ps_rows)
-    md << "| " << p.surface << " | " << p.sigma << " | " << p.setting << " | " << fmt(p.wj.H) << " | " << fmt(p.cgal.H) << " | "
-       << fmt(p.wj.K) << " | " << fmt(p.cgal.K) << " | " << fmt(p.wj.mean_angle) << " / " << fmt(p.wj.p95_angle) << " | "
-       << fmt(p.cgal.mean_angle) << " / " << fmt(p.cgal.p95_angle) << " | " << p.unfitted << " | " << fmt(p.max_diff, 2)
-       << " | " << fmt(p.seconds) << " |\n";
-  md << "\n";
+    table.add_row({p.surface, num(p.sigma), p.setting, fmt(p.wj.H), fmt(p.cgal.H), fmt(p.wj.K), fmt(p.cgal.K),
+                   fmt(p.wj.mean_angle) + " / " + fmt(p.wj.p95_angle),
+                   fmt(p.cgal.mean_angle) + " / " + fmt(p.cgal.p95_angle),
+                   std::to_string(p.unfitted), fmt(p.max_diff, 2), fmt(p.seconds)});
+  return table;
 }
 
 /// "Outliers" (experiment 2).
-static void write_outliers(std::ostream& md, const Surfaces& surfaces, const Experiments& ex)
+static WB::Csv_table outliers_table(const Surfaces& surfaces, const Experiments& ex)
 {
-  md << "## Outliers\n\nsigma = 0 and 0.5%, outlier fraction 0/5/10%, r = 0.1 and 0.2, K = 2 and 4; H RMSE and mean normal"
-        " angle (deg) at the inliers.\n\n"
-     << "| surface | sigma % | outliers | r | K | WJ H | WJ-R3 H | CGAL H | WJ angle | WJ-R3 angle | CGAL angle | PCA angle |\n"
-     << "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+  WB::Csv_table table({"surface", "sigma %", "outliers", "r", "K", "WJ H", "WJ-R3 H", "CGAL H", "WJ angle",
+                       "WJ-R3 angle", "CGAL angle", "PCA angle"});
   for(const auto& S : surfaces)
     for(double sigma : ex.out_sigmas)
       for(double of : ex.outlier_fractions)
@@ -1508,77 +1281,68 @@ static void write_outliers(std::ostream& md, const Surfaces& surfaces, const Exp
           for(std::size_t K : ex.out_orders)
           {
             auto g = [&](int e, std::size_t k) -> const Result& { return ex.R.at({S->name(), sigma, of, r, k, e}); };
-            md << "| " << S->name() << " | " << sigma << " | " << of * 100 << "% | " << r << " | " << K << " | "
-               << fmt(g(WJ, K).H) << " | " << fmt(g(WJ_R3, K).H) << " | " << fmt(g(CGAL_JET, K).H) << " | "
-               << fmt(g(WJ, K).mean_angle) << " | " << fmt(g(WJ_R3, K).mean_angle) << " | " << fmt(g(CGAL_JET, K).mean_angle)
-               << " | " << fmt(g(PCA, 0).mean_angle) << " |\n";
+            table.add_row({S->name(), num(sigma), num(of * 100) + "%", num(r), std::to_string(K), fmt(g(WJ, K).H),
+                           fmt(g(WJ_R3, K).H), fmt(g(CGAL_JET, K).H), fmt(g(WJ, K).mean_angle),
+                           fmt(g(WJ_R3, K).mean_angle), fmt(g(CGAL_JET, K).mean_angle), fmt(g(PCA, 0).mean_angle)});
           }
-  md << "\n";
+  return table;
 }
 
 /// "Noisy seed normals" (experiment 3).
-static void write_seed_normals(std::ostream& md, const Experiments& ex)
+static WB::Csv_table seed_normals_table(const Experiments& ex)
 {
-  md << "## Noisy seed normals\n\nsigma = 0, r = 0.1, K = 4. The input normals are the true normals tilted by a random angle"
-        " (tangent components N(0, s^2), s in degrees below; mean tilt = s sqrt(pi/2)). 'orient': the normal only orients the"
-        " PCA frame (default); 'seed': first fit in the plane orthogonal to the noisy normal (`seed_with_input_normals(true)`),"
-        " curvature from that first fit; 'seed+T': seed and curvature from the corrected tangent frame. CGAL (PCA frame) for"
-        " reference.\n\n"
-     << "| surface | s (deg) | orient: H / angle | seed: H / angle | seed+T: H / angle | CGAL: H / angle |\n"
-     << "| --- | --- | --- | --- | --- | --- |\n";
+  WB::Csv_table table({"surface", "s (deg)", "orient: H / angle", "seed: H / angle", "seed+T: H / angle",
+                       "CGAL: H / angle"});
+  auto cell = [](const Result& x) { return fmt(x.H) + " / " + fmt(x.mean_angle); };
   for(const Seed_row& x : ex.seed_rows)
-    md << "| " << x.surface << " | " << x.deg << " | " << fmt(x.orient.H) << " / " << fmt(x.orient.mean_angle) << " | "
-       << fmt(x.seed.H) << " / " << fmt(x.seed.mean_angle) << " | " << fmt(x.seed_t.H) << " / " << fmt(x.seed_t.mean_angle)
-       << " | " << fmt(x.cgal.H) << " / " << fmt(x.cgal.mean_angle) << " |\n";
-  md << "\n";
+    table.add_row({x.surface, num(x.deg), cell(x.orient), cell(x.seed), cell(x.seed_t), cell(x.cgal)});
+  return table;
 }
 
-/// "Full tables": every (surface, r, K, estimator) of experiment 1.
-static void write_full_tables(std::ostream& md, const Surfaces& surfaces, const Experiments& ex)
+/// Every (noise level, surface, r, K, estimator) of experiment 1.
+static WB::Csv_table full_grid_table(const Surfaces& surfaces, const Experiments& ex)
 {
-  md << "## Full tables (position noise)\n\nRMSE of H, K_G, k1, k2; normal angle in degrees; 'not fitted': evaluation points"
-        " without an estimate; 'reduced': evaluation points whose neighborhood is below 1.1 (K+1)(K+2)/2 points (adaptive"
-        " order lowers K there).\n\n";
+  WB::Csv_table table({"sigma %", "surface", "r", "K", "est.", "H", "K_G", "k1", "k2", "angle mean", "angle p95",
+                       "not fitted", "reduced"});
+  auto add = [&](double sigma, const std::string& S, double r, std::size_t K, int e) {
+    const Result& x = ex.R.at({S, sigma, 0., r, K, e});
+    const bool c = x.has_curvature;
+    table.add_row({num(sigma), S, num(r), e == PCA ? std::string("-") : std::to_string(K), estimator_name[e],
+                   c ? fmt(x.H) : "-", c ? fmt(x.K) : "-", c ? fmt(x.k1) : "-", c ? fmt(x.k2) : "-", fmt(x.mean_angle),
+                   fmt(x.p95_angle), std::to_string(x.failed),
+                   e == WJ || e == WJ_R3 || e == WJ_T ? std::to_string(x.reduced) : std::string("-")});
+  };
   for(double sigma : ex.sigmas)
-  {
-    md << "### sigma = " << sigma << "%\n\n";
-    write_full_table_header(md);
     for(const auto& S : surfaces)
       for(double r : ex.radii)
       {
-        write_full_table_row(md, S->name(), r, 0, PCA, ex.R.at({S->name(), sigma, 0., r, 0, PCA}));
+        add(sigma, S->name(), r, 0, PCA);
         for(std::size_t K : ex.orders)
-          for(int e : {WJ, WJ_R3, WJ_T, WJ_FIX, CGAL_JET})
-            write_full_table_row(md, S->name(), r, K, e, ex.R.at({S->name(), sigma, 0., r, K, e}));
+          for(int e : {WJ, WJ_R3, WJ_T, WJ_FIX, CGAL_JET}) add(sigma, S->name(), r, K, e);
       }
-    md << "\n";
-  }
+  return table;
 }
 
-/// The whole report; "Which settings to use" is the hand-written block of `old_report` (kept across runs).
-static std::string accuracy_report(const Options& o, const Surfaces& surfaces, const Experiments& ex,
-                                   const Pipe_output& pipe, double total_seconds, const std::string& old_report)
+/// Writes accuracy.context.csv into `dir`: the rows of an existing one, with the keys of `updates` replaced or added
+/// (a run without the noisy-pipeline section keeps that section's run time, and the reverse).
+static void write_context(const std::string& dir, const std::vector<std::pair<std::string, std::string> >& updates)
 {
-  std::ostringstream md;
-  write_introduction(md, o, surfaces, ex, total_seconds);
-  md << "## Targets\n\n";
-  write_clean_target(md, surfaces, ex);
-  write_noisy_target(md, surfaces, ex);
-  if(!pipe.target.empty()) md << pipe.target << "\n\n";
-  md << "Time spent per estimator in the position-noise sweep (all surfaces, noise levels, radii and orders; "
-     << o.eval << " points each; both threads): WJ (also gives WJ-T) " << fmt(ex.seconds[WJ]) << " s, WJ-R3 "
-     << fmt(ex.seconds[WJ_R3]) << " s, CGAL " << fmt(ex.seconds[CGAL_JET]) << " s.\n\n";
-  write_summary(md, surfaces, ex);
-  write_point_set_table(md, o, ex);
-  if(!pipe.block.empty()) md << pipe.block << "\n\n";
-  std::string settings = marked_block(old_report, "settings");
-  if(settings.empty())
-    settings = "<!-- settings-begin -->\n(to be written from the tables above)\n<!-- settings-end -->";
-  md << "## Which settings to use\n\n" << settings << "\n\n";
-  write_outliers(md, surfaces, ex);
-  write_seed_normals(md, ex);
-  write_full_tables(md, surfaces, ex);
-  return md.str();
+  WB::Csv_table fresh = WB::context_table();
+  for(const auto& u : updates) fresh.add_row({u.first, u.second});
+  std::string text = fresh.str();
+  std::ifstream old(dir + "/accuracy.context.csv");
+  std::string line;
+  std::getline(old, line); // header
+  while(std::getline(old, line))
+  {
+    const std::string key = line.substr(0, line.find(','));
+    if(std::none_of(updates.begin(), updates.end(), [&](const auto& u) { return u.first == key; })) text += line + "\n";
+  }
+  const std::string path = dir + "/accuracy.context.csv";
+  std::ofstream f(path);
+  f << text;
+  if(!f) { std::cerr << "cannot write " << path << "\n"; std::exit(EXIT_FAILURE); }
+  std::cout << "wrote " << path << "\n";
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -1592,42 +1356,36 @@ int main(int argc, char** argv)
   CGAL::Real_timer total;
   total.start();
   const Surfaces surfaces = WB::all_surfaces();
-  // Blocks kept from an existing report when they are not regenerated.
-  const std::string old_report = read_text_file(o.out + "/accuracy.md");
-  Pipe_output pipe;
+  Named_tables tables;
+  std::vector<std::pair<std::string, std::string> > context;
   if(o.pipeline)
   {
-    pipe = Noisy_pipeline(o, surfaces).run();
-    std::ofstream(o.out + "/accuracy_pipeline.dat") << pipe.dat;
+    Pipe_output pipe = Noisy_pipeline(o, surfaces).run();
+    tables = pipe.tables;
+    context.emplace_back("noisy-pipeline run time (s)", fmt(pipe.seconds, 3));
   }
-  if(o.pipeline_only)
+  if(!o.pipeline_only)
   {
-    merge_pipeline_section(o, old_report, pipe);
-    return 0;
+    Experiments ex(o.quick);
+    run_position_noise(o, surfaces, ex, total);
+    run_outliers(o, surfaces, ex, total);
+    run_seed_normals(o, surfaces, ex, total);
+    run_point_set_functions(o, surfaces, ex, total);
+    const double total_seconds = total.time();
+    print_prose_numbers(surfaces, ex);
+    std::cout << "time per estimator in the position-noise sweep: WJ (also gives WJ-T) " << fmt(ex.seconds[WJ])
+              << " s, WJ-R3 " << fmt(ex.seconds[WJ_R3]) << " s, CGAL " << fmt(ex.seconds[CGAL_JET]) << " s\n";
+    tables.emplace_back("accuracy.summary", summary_table(surfaces, ex));
+    tables.emplace_back("accuracy.noise_best", noise_best_table(surfaces, ex));
+    tables.emplace_back("accuracy.targets", targets_table(surfaces, ex));
+    tables.emplace_back("accuracy.point_set_functions", point_set_table(ex));
+    tables.emplace_back("accuracy.outliers", outliers_table(surfaces, ex));
+    tables.emplace_back("accuracy.noisy_seed_normals", seed_normals_table(ex));
+    tables.emplace_back("accuracy.full_grid", full_grid_table(surfaces, ex));
+    context.insert(context.begin(), {{"machine", WB::machine_description()}, {"run time (s)", fmt(total_seconds, 3)}});
   }
-  if(!o.pipeline)
-  {
-    pipe.block = marked_block(old_report, "noisy-pipeline");
-    pipe.target = marked_block(old_report, "pipeline-target");
-  }
-
-  Experiments ex(o.quick);
-  run_position_noise(o, surfaces, ex, total);
-  run_outliers(o, surfaces, ex, total);
-  run_seed_normals(o, surfaces, ex, total);
-  run_point_set_functions(o, surfaces, ex, total);
-  const double total_seconds = total.time();
-
-  // The script names the data and the image relative to DIR (no absolute paths in the committed files).
-  const std::string dat = "accuracy_noise.dat", gp = "accuracy.gp", png = "accuracy.png";
-  write_noise_data(o.out + "/" + dat, surfaces, ex);
-  write_plot_script(o.out + "/" + gp, dat, png, surfaces);
-  bool plotted = false;
-  if(o.plot && std::system("command -v gnuplot >/dev/null 2>&1") == 0)
-    plotted = std::system(("cd '" + o.out + "' && gnuplot " + gp).c_str()) == 0;
-
-  std::ofstream(o.out + "/accuracy.md") << accuracy_report(o, surfaces, ex, pipe, total_seconds, old_report);
-  std::cout << "wrote " << o.out << "/accuracy.md" << (plotted ? ", " + o.out + "/" + png : std::string(", no plot (gnuplot not found or failed)"))
-            << " in " << total_seconds << " s\n";
+  if(!o.write()) return 0;
+  for(const auto& table : tables) table.second.write(o.csv_dir, table.first);
+  write_context(o.csv_dir, context);
   return 0;
 }
