@@ -4,7 +4,7 @@
 # and install checks) and prints the time of each leg and the total.
 #
 # By default, one leg: g++ + Debian's CGAL 5.5, Release, benchmarks built too (the inner loop of a
-# change). With CI=true (as CI sets it) or WAVEJETS_FULL_MATRIX=1, the whole build matrix:
+# change). With CI=true (as .ci/run sets it) or WAVEJETS_FULL_MATRIX=1, the whole build matrix:
 #   1. g++     + CGAL 5.5 (Debian)  Release, benchmarks built too
 #   2. clang++ + CGAL 6.1.1         Release, benchmarks built too; its results of every public
 #      function are compared with leg 1's to 1e-12 relative (test_public_api_results); the
