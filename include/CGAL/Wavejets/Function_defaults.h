@@ -12,6 +12,7 @@
 
 #include <CGAL/Wavejets/Fitting_options.h>
 
+#include <algorithm>
 #include <cstddef>
 
 namespace CGAL {
@@ -77,6 +78,23 @@ inline Function_defaults function_defaults(Point_set_function f)
   }
   return d;
 }
+
+/// \ingroup PkgWavejetsRef
+/// The neighborhood size that the `wavejets` tool and the Python module use when none is given: the
+/// 40 nearest neighbors, or 1.5 times the (K+1)(K+2)/2 coefficients of order K when that is more
+/// (order 7 and above), so that every point is fitted at full order. k nearest neighbors rather than
+/// a radius from the average spacing, because the neighborhood radius Rf then follows the sampling
+/// density: the sparse parts of a non-uniform mesh are fitted too (user manual, "Choosing the settings").
+inline std::size_t default_number_of_neighbors(std::size_t order)
+{
+  const std::size_t coefficients = (order + 1) * (order + 2) / 2;
+  return std::max<std::size_t>(40, 3 * coefficients / 2);
+}
+
+/// \ingroup PkgWavejetsRef
+/// The gain of the filters that the `wavejets` tool and the Python module use when none is given
+/// (details doubled).
+constexpr double default_filter_gain = 2.;
 
 } // namespace Wavejets
 } // namespace CGAL

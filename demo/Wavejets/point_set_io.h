@@ -1,0 +1,59 @@
+// Reading and writing the point sets and meshes of the `wavejets` tool and of the Python module
+// through CGAL's IO: PLY, OFF, OBJ, XYZ and PWN in; PLY (every property, a mesh's faces), OFF and OBJ out.
+#ifndef WAVEJETS_DEMO_POINT_SET_IO_H
+#define WAVEJETS_DEMO_POINT_SET_IO_H
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Point_set_3.h>
+
+#include "render.h"   // Faces
+
+#include <stdexcept>
+#include <string>
+
+namespace wavejets_demo {
+
+typedef CGAL::Exact_predicates_inexact_constructions_kernel Kernel;
+typedef Kernel::Point_3 Point;
+typedef Kernel::Vector_3 Vector;
+typedef CGAL::Point_set_3<Point, Vector> Point_set;
+
+/// A file that cannot be read or written; its message names the file and says why, on one line.
+struct File_error : std::runtime_error { using std::runtime_error::runtime_error; };
+
+/// The extension of `path`, lower case, without the dot ("" if none).
+std::string lower_extension(const std::string& path);
+
+/// A point set or a mesh as read from a file.
+struct Input
+{
+  Point_set points;
+  bool had_normals = false;
+  double read_seconds = 0.;
+  std::string format;
+  // Faces of a mesh input (OFF, PLY with a face element, OBJ), as vertex indices, copied as they
+  // are (a polygon soup: non-manifold, badly oriented or non-triangular faces are kept). Empty: a point set.
+  Faces faces;
+  bool is_mesh() const { return !faces.empty(); }
+};
+
+/// Reads a point set (`.xyz`, `.pwn`, `.ply` or `.off` without faces) or a mesh (`.off`, `.obj`,
+/// `.ply` with faces), its normals where the file has some (all zero or non-finite: none) and the
+/// other PLY properties. Throws `File_error` for an unreadable, malformed, truncated or empty file,
+/// a NaN or infinite coordinate, a face referring to a missing vertex, or points that all coincide.
+Input read_input(const std::string& path);
+
+/// Output formats: PLY (the point set's properties, and the faces of a mesh), or for a mesh OFF or
+/// OBJ (positions, normals and faces only); chosen by the extension of the path (PLY otherwise).
+enum class Output_format { PLY, OFF, OBJ };
+Output_format output_format(const std::string& path);
+
+/// Writes `points` (with every property, in PLY) and `faces` to `path`, through a temporary file
+/// renamed at the end: on error, `path` is left untouched. PLY is binary little-endian (doubles)
+/// unless `ascii` (17 significant digits). Throws `File_error`.
+void write_output(const Point_set& points, const Faces& faces, const std::string& path, bool ascii,
+                  const std::string& comment);
+
+} // namespace wavejets_demo
+
+#endif // WAVEJETS_DEMO_POINT_SET_IO_H

@@ -1,0 +1,148 @@
+// Copyright (c) 2026 The CGAL Wavejets project.
+// All rights reserved.
+//
+// This file is part of the CGAL Wavejets package.
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s) : The CGAL Wavejets developers
+
+// What the translation units of the Python module `wavejets._wavejets` share: NumPy arrays seen as
+// CGAL property maps (no copy of the input), the settings of a call, and the runner that computes
+// with the GIL released while the calling thread watches for Ctrl-C and draws the progress.
+#ifndef WAVEJETS_PYTHON_BINDINGS_H
+#define WAVEJETS_PYTHON_BINDINGS_H
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Wavejets/Fitting_options.h>
+#include <CGAL/Wavejets/Function_defaults.h>
+#include <CGAL/Wavejets/Processing_report.h>
+
+#include <boost/iterator/counting_iterator.hpp>
+#include <boost/property_map/property_map.hpp>
+#include <boost/range/counting_range.hpp>
+
+#include <complex>
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <string>
+
+namespace wavejets_python {
+
+namespace py = pybind11;
+
+typedef CGAL::Exact_predicates_inexact_constructions_kernel Kernel;
+typedef Kernel::Point_3 Point;
+typedef Kernel::Vector_3 Vector;
+
+/// The (N, 3) float64 C-contiguous arrays the module reads in place (the Python layer converts
+/// other dtypes and layouts once, with `numpy.ascontiguousarray`).
+typedef py::array_t<double, py::array::c_style> Coordinates;
+
+/// The range the functions run over: the indices 0..N-1, keys of the property maps below.
+typedef boost::iterator_range<boost::counting_iterator<std::size_t> > Index_range;
+inline Index_range index_range(std::size_t n) { return boost::counting_range(std::size_t(0), n); }
+
+/// Points read from one (N, 3) buffer and written to another (the result; may be null when the
+/// function moves no point).
+struct Point_map
+{
+  typedef std::size_t key_type;
+  typedef Point value_type;
+  typedef Point reference;
+  typedef boost::read_write_property_map_tag category;
+  const double* in;
+  double* out;
+  friend Point get(const Point_map& m, std::size_t i) { const double* p = m.in + 3 * i; return Point(p[0], p[1], p[2]); }
+  friend void put(const Point_map& m, std::size_t i, const Point& p)
+  {
+    double* q = m.out + 3 * i;
+    q[0] = p.x(); q[1] = p.y(); q[2] = p.z();
+  }
+};
+
+/// Vectors read from one (N, 3) buffer (the input normals) and written to another (the result).
+struct Vector_map
+{
+  typedef std::size_t key_type;
+  typedef Vector value_type;
+  typedef Vector reference;
+  typedef boost::read_write_property_map_tag category;
+  const double* in;
+  double* out;
+  friend Vector get(const Vector_map& m, std::size_t i) { const double* v = m.in + 3 * i; return Vector(v[0], v[1], v[2]); }
+  friend void put(const Vector_map& m, std::size_t i, const Vector& v)
+  {
+    double* q = m.out + 3 * i;
+    q[0] = v.x(); q[1] = v.y(); q[2] = v.z();
+  }
+};
+
+/// One value per point written into a buffer of N values (doubles; NumPy bools for the fitted flags).
+template <class T, class Stored = T>
+struct Output_map
+{
+  typedef std::size_t key_type;
+  typedef T value_type;
+  typedef T reference;
+  typedef boost::writable_property_map_tag category;
+  Stored* out;
+  friend void put(const Output_map& m, std::size_t i, const T& v) { m.out[i] = Stored(v); }
+};
+typedef Output_map<double> Scalar_map;
+typedef Output_map<bool> Flag_map;
+
+/// The settings of one call, read from the keyword arguments the Python layer passes (every key is
+/// optional: a missing one takes the C++ default, of `Fitting_options` or of the function).
+struct Call
+{
+  std::size_t number_of_points = 0;
+  unsigned int k = 0;
+  double neighbor_radius = 0.;
+  std::size_t order = 0;
+  CGAL::Wavejets::Fitting_options fitting;
+  bool orient_with_input_normals = false;
+  bool seed_with_input_normals = false;
+  bool restrict_to_consistent_normals = false;
+  bool use_neighbor_normals = false;
+  std::complex<double> gain = 2.;
+  double evaluation_radius = 0.;
+  std::optional<double> maximum_displacement;   // none: the function's default (Rf/2 per point)
+  bool write_normals = false;
+  bool move_along_input_normals = false;
+  int threads = 0;                              // 0: all cores
+  py::object progress;                          // None, or called with the fraction done
+};
+
+/// Reads the settings of a call of `function` (its defaults: `function_defaults()`).
+Call read_call(const py::dict& kwargs, CGAL::Wavejets::Point_set_function function, std::size_t number_of_points);
+
+/// Checks that `a` is an (N, 3) array of finite numbers (N = `rows` unless `rows` is -1); throws
+/// ValueError naming `name` and the first bad row.
+void check_coordinates(const Coordinates& a, const char* name, long rows = -1);
+
+/// A new (N, 3) array: a copy of `source` when it is not None, else zeros.
+Coordinates copy_or_zeros(const py::object& source, std::size_t n);
+
+/// Runs `compute(callback)` on a worker thread, in a TBB arena of `call.threads` threads, with the
+/// GIL released. Meanwhile the calling thread checks for signals (Ctrl-C: the callback then returns
+/// false, the C++ function stops and writes nothing, and KeyboardInterrupt is raised) and calls
+/// `call.progress` with the fraction done, a few times per second. C++ exceptions propagate.
+CGAL::Wavejets::Processing_report
+run_interruptibly(const Call& call,
+                  const std::function<CGAL::Wavejets::Processing_report(const std::function<bool(double)>&)>& compute);
+
+/// The report as a Python `wavejets.Report` (with the fitted flags).
+py::object make_report(const CGAL::Wavejets::Processing_report& r, const py::array_t<bool>& fitted);
+
+void bind_point_set_functions(py::module_& m);
+void bind_fitting(py::module_& m);
+void bind_io(py::module_& m);
+
+} // namespace wavejets_python
+
+#endif // WAVEJETS_PYTHON_BINDINGS_H
