@@ -25,6 +25,7 @@
 #include <CGAL/wavejet_estimate_curvatures.h>
 #include <CGAL/wavejet_estimate_normals.h>
 
+#include <chrono>
 #include <complex>
 #include <cstdlib>
 #include <fstream>
@@ -39,6 +40,10 @@ namespace WP = CGAL::Wavejets::parameters;
 namespace {
 
 std::vector<char> fitted_bytes;
+std::chrono::steady_clock::time_point call_start;
+double call_seconds = 0.;
+void call_started() { call_start = std::chrono::steady_clock::now(); }
+void call_done() { call_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - call_start).count(); }
 
 struct Fitted_map
 {
@@ -82,9 +87,11 @@ int main(int argc, char** argv)
 
   if(function == "estimate_normals") {
     if(!had_normals) ps.add_normal_map(Vector(0, 0, 0));
+    call_started();
     CGAL::wavejet_estimate_normals<CGAL::Parallel_tag>(ps, k,
       WP::order(order).orient_with_input_normals(had_normals).fitted_map(Fitted_map())
         .point_map(ps.point_map()).normal_map(ps.normal_map()));
+    call_done();
     write_vectors(os, ps, ps.normal_map());
   } else if(function == "estimate_curvatures") {
     Point_set::Property_map<double> H = ps.add_property_map<double>("H", 0.).first, K = ps.add_property_map<double>("K", 0.).first,
@@ -94,19 +101,23 @@ int main(int argc, char** argv)
     const auto np = WP::order(order).mean_curvature_map(H).gaussian_curvature_map(K).maximal_principal_curvature_map(k1)
                       .minimal_principal_curvature_map(k2).maximal_principal_direction_map(d1)
                       .minimal_principal_direction_map(d2).fitted_map(Fitted_map());
+    call_started();
     if(had_normals)
       CGAL::wavejet_estimate_curvatures<CGAL::Parallel_tag>(ps, k, np.point_map(ps.point_map()).normal_map(ps.normal_map()));
     else
       CGAL::wavejet_estimate_curvatures<CGAL::Parallel_tag>(ps, k, np.point_map(ps.point_map()));
+    call_done();
     for(const auto& m : {H, K, k1, k2}) write_scalars(os, ps, m);
     write_vectors(os, ps, d1);
     write_vectors(os, ps, d2);
   } else if(function == "enhance_positions") {
     const auto np = WP::order(order).write_normals(had_normals).fitted_map(Fitted_map());
+    call_started();
     if(had_normals)
       CGAL::wavejet_enhance_positions<CGAL::Parallel_tag>(ps, k, gain.real(), np.point_map(ps.point_map()).normal_map(ps.normal_map()));
     else
       CGAL::wavejet_enhance_positions<CGAL::Parallel_tag>(ps, k, gain.real(), np.point_map(ps.point_map()));
+    call_done();
     for(Point_set::Index i : ps) {
       const double p[3] = {ps.point(i).x(), ps.point(i).y(), ps.point(i).z()};
       os.write(reinterpret_cast<const char*>(p), sizeof p);
@@ -114,13 +125,16 @@ int main(int argc, char** argv)
     if(had_normals) write_vectors(os, ps, ps.normal_map());
   } else if(function == "enhance_normals") {
     if(!had_normals) ps.add_normal_map(Vector(0, 0, 0));
+    call_started();
     CGAL::wavejet_enhance_normals<CGAL::Parallel_tag>(ps, k, gain,
       WP::order(order).fitted_map(Fitted_map()).point_map(ps.point_map()).normal_map(ps.normal_map()));
+    call_done();
     write_vectors(os, ps, ps.normal_map());
   } else {
     std::cerr << "unknown function " << function << "\n";
     return 2;
   }
   os.write(fitted_bytes.data(), std::streamsize(fitted_bytes.size()));
+  if(std::getenv("WAVEJETS_REFERENCE_TIME")) std::cout << "seconds " << call_seconds << std::endl;
   return os ? EXIT_SUCCESS : EXIT_FAILURE;
 }
