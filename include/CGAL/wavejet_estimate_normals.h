@@ -81,7 +81,9 @@ normals that are read always orient the frames.
                           returning `false` stops the computation, and then nothing at all is written}
     \cgalParamType{an instance of `std::function<bool(double)>`}
     \cgalParamDefault{unused}
-    \cgalParamExtra{under `Parallel_tag`, it is called asynchronously on a separate thread}
+    \cgalParamExtra{called after every 256 points and once more with 1 at the end of each pass over
+                    the points, never twice at the same time; under `Parallel_tag`, from the
+                    threads that process the points}
   \cgalParamNEnd
   \cgalParamNBegin{geom_traits}
     \cgalParamDescription{an instance of a geometric traits class}

@@ -797,10 +797,10 @@ static void test_contract(const PV_range& kitten)
     report("5c. interrupted call changes nothing and reports interrupted", ok,
            std::to_string(calls1) + " callback calls before stopping");
   }
-  // 5c'. The same under Parallel_tag. The callback then runs on a thread of its own (CGAL's
-  // Callback_wrapper<Parallel_tag> polls the progress every 10 us) and the TBB workers check its
-  // flag before each point; it returns false from 30% on. Every output must be unchanged (points,
-  // normals, the curvature maps and fitted_map preset to sentinels) and the report interrupted.
+  // 5c'. The same under Parallel_tag. The callback then runs on the TBB workers, one call at a
+  // time after each chunk of points, and they check its flag before each point; it returns false
+  // from 30% on. Every output must be unchanged (points, normals, the curvature maps and
+  // fitted_map preset to sentinels) and the report interrupted.
 #ifdef CGAL_LINKED_WITH_TBB
   {
     bool ok = true;

@@ -18,13 +18,10 @@
 //   `has_normal_map(range, np)`, which is only constexpr for plain ranges and is a run-time
 //   check for a Point_set_3. The package answers both questions itself, from public API only
 //   (`is_default_parameter` and `Point_set_3::has_normal_map()`), identically on every version.
-// - The progress callback wrapper of Point_set_processing_3 (an internal header that has the
-//   same interface in 5.5 and 6.x, and that CGAL's own jet functions use).
 // - Looking up an existing property of a Point_set_3 by name: `property_map<T>(name)` returns a
 //   std::pair<map, bool> in CGAL 5.5 and a std::optional<map> in CGAL 6 (used by the tool).
 
 #include <CGAL/Named_function_parameters.h>
-#include <CGAL/Point_set_processing_3/internal/Callback_wrapper.h>
 #include <CGAL/version.h>
 
 #include <string>
@@ -72,10 +69,6 @@ bool has_normal_map(const PointRange&, const NP&)
 {
   return has_normal_map_parameter<NP>();
 }
-
-/// Progress and interruption through the `callback` named parameter, for `ConcurrencyTag`.
-template <class ConcurrencyTag>
-using Callback_wrapper = CGAL::Point_set_processing_3::internal::Callback_wrapper<ConcurrencyTag>;
 
 /// The property `name` of value type `T` of a `Point_set_3` (include `CGAL/Point_set_3.h` first), and
 /// whether it exists, on every supported CGAL release.

@@ -25,6 +25,7 @@
 #include <CGAL/Wavejets/internal/cgal_compatibility.h>
 #include <CGAL/Wavejets/internal/fitting_core.h>
 #include <CGAL/Wavejets/internal/neighbor_query.h>
+#include <CGAL/Wavejets/internal/progress.h>
 
 #include <CGAL/boost/graph/named_params_helper.h>
 #include <CGAL/Named_function_parameters.h>
@@ -415,7 +416,7 @@ Driver_run fit_each_point(const Input& input, const Driver_settings& settings, c
   std::vector<std::size_t> chunks;
   for(std::size_t b = 0; b < N; b += chunk_size) chunks.push_back(b);
 
-  Callback_wrapper<ConcurrencyTag> progress(settings.callback, N);
+  Pass_progress progress(settings.callback, N);
   std::atomic<bool> interrupted(false);
 
   CGAL::for_each<ConcurrencyTag>(chunks, [&](const std::size_t begin) -> bool {
@@ -425,7 +426,6 @@ Driver_run fit_each_point(const Input& input, const Driver_settings& settings, c
     {
       const std::size_t i = order[position];
       if(interrupted || progress.interrupted()) { interrupted = true; return false; }
-      ++progress.advancement();
       if(!input.finite[i]) { status[i] = (unsigned char)(Fit_status::NON_FINITE_INPUT); continue; }
       const Fit_result& fit = fitter.fit(i, input, settings, query, neighbor_normals);
       status[i] = (unsigned char)(fit.status);
@@ -434,14 +434,11 @@ Driver_run fit_each_point(const Input& input, const Driver_settings& settings, c
       kernel(Fitted_point{i, fit, fitter.coefficients()});
       run.fitted[i] = 1;
     }
+    progress.advance(end - begin);
     return true;
   });
-  progress.join();
-  // Under Parallel_tag the callback runs on its own thread: a `false` it returned after the
-  // workers' last check still interrupts (nothing is written). Sequential_tag's interrupted()
-  // would call the callback once more; there every `false` was already seen by the loop.
-  if constexpr(!std::is_same<ConcurrencyTag, CGAL::Sequential_tag>::value)
-    if(progress.interrupted()) interrupted = true;
+  if(!interrupted) progress.finish();
+  if(progress.interrupted()) interrupted = true;
   run.report.interrupted = interrupted;
   count_points(run, status, reduced);
   return run;
