@@ -256,13 +256,10 @@ namespace {
 char g_temporary[4096] = {0};
 } // namespace
 
+void remove_output_files_on_interrupt() { remove_on_interrupt(g_temporary); }
+
 Output_file::Output_file(const std::string& path) : path_(path)
 {
-  static bool handlers = false;
-  if(!handlers) {
-    remove_on_interrupt(g_temporary);
-    handlers = true;
-  }
   const std::size_t slash = path.find_last_of('/');
   const std::string dir = slash == std::string::npos ? "." : path.substr(0, slash + 1 == 1 ? 1 : slash);
   const std::string base = slash == std::string::npos ? path : path.substr(slash + 1);

@@ -61,7 +61,8 @@ void write_png(const Image& image, const std::string& path);
 Image read_png(const std::string& path);
 
 /// Writes a file atomically: the content goes to a temporary file in the same folder, renamed over
-/// `path` by commit(); the temporary is removed if commit() is not reached, and on SIGINT/SIGTERM.
+/// `path` by commit(); the temporary is removed if commit() is not reached, and on SIGINT/SIGTERM
+/// in a program that called remove_output_files_on_interrupt().
 class Output_file
 {
 public:
@@ -75,6 +76,11 @@ private:
   std::string path_, tmp_;
   bool committed_ = false;
 };
+
+/// For programs (the tool): SIGINT and SIGTERM remove the temporary file of the Output_file being
+/// written, print that nothing was written and exit. A library (the Python module) never calls it,
+/// so that the host keeps its own handlers (Python's KeyboardInterrupt).
+void remove_output_files_on_interrupt();
 
 } // namespace wavejets_demo
 

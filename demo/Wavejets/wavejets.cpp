@@ -826,6 +826,7 @@ int run_render(const Options& o, Progress& progress)
 int main(int argc, char** argv)
 {
   std::string input;   // the first input file, named by the errors that do not name one themselves
+  wavejets_demo::remove_output_files_on_interrupt();
   try {
     const Options o = parse_command_line(argc, argv);
     if(!o.files.empty()) input = o.files[0] + ": ";
