@@ -37,4 +37,9 @@ moved, report = wavejets.enhance_positions(points, normals, gain=args.gain, rest
 print(f"{args.input}: {len(points)} vertices, {len(faces)} faces; {report}")
 path = out / "enhanced.ply"
 wavejets.write(path, moved, None, faces)
-print("wrote", path, "- compare with the input in MeshLab, or: wavejets render --compare", args.input, path, "out.png")
+print("wrote", path)
+
+# Pictures of the input and the result, seen from the same side (the package's renderer).
+for name, vertices in [("input", points), ("enhanced", moved)]:
+    wavejets.render(out / f"{name}.png", vertices, faces=faces, width=600, height=600)
+print("wrote", out / "input.png", "and", out / "enhanced.png")

@@ -1,5 +1,5 @@
 """Normals and curvature of a scan on NumPy arrays, written as a PLY that MeshLab or CloudCompare
-colours by curvature (property mean_curvature).
+colours by curvature (property mean_curvature), and drawn coloured by it into a PNG.
 
     python3 numpy_curvature.py [--input SCAN] [--out FOLDER]
 """
@@ -37,6 +37,11 @@ wavejets.write(path, points, normals, faces,
                properties={"mean_curvature": c.mean_curvature, "gaussian_curvature": c.gaussian_curvature,
                            "k1": c.k1, "k2": c.k2})
 print("wrote", path)
+picture = out / "curvature.png"
+wavejets.render(picture, points, normals, faces, values=c.mean_curvature)
+# H > 0 where the surface bends toward its normals: with outward normals, bumps are blue (H < 0)
+# and hollows red.
+print("wrote", picture, "(blue: H < 0, red: H > 0)")
 
 # Read back: the same numbers.
 back, back_normals, _, properties = wavejets.read(path, properties=True)

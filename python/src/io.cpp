@@ -7,14 +7,23 @@
 //
 // Author(s) : The CGAL Wavejets developers
 
-// wavejets.read / wavejets.write: the `wavejets` tool's reading and writing (demo/Wavejets/
-// point_set_io.h, through CGAL's IO), on NumPy arrays.
+// wavejets.read / wavejets.write / wavejets.render: the `wavejets` tool's reading and writing
+// (demo/Wavejets/point_set_io.h, through CGAL's IO) and its renderer (demo/Wavejets/render.h), on
+// NumPy arrays.
 #include "bindings.h"
 
 #include "point_set_io.h"
+#include "render.h"
+
+#include <CGAL/Wavejets/internal/cgal_compatibility.h>
+
+#include <CGAL/compute_average_spacing.h>
 
 #include <pybind11/stl.h>
 
+#include <array>
+#include <tuple>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -66,7 +75,7 @@ py::tuple read(const std::string& path)
   for(const std::string& name : in.points.properties()) {
     Point_set::Property_map<double> d;
     bool found = false;
-    std::tie(d, found) = in.points.property_map<double>(name);
+    std::tie(d, found) = CGAL::Wavejets::internal::find_property_map<double>(in.points, name);
     if(!found) continue;
     py::array_t<double> values{py::ssize_t(n)};
     double* v = values.mutable_data();
@@ -98,9 +107,12 @@ void write(const std::string& path, const Coordinates& points, const py::object&
       py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(item.second);
     if(!values || values.ndim() != 1 || std::size_t(values.shape(0)) != n)
       throw py::value_error("properties['" + name + "']: expected " + std::to_string(n) + " numbers (one per point)");
-    if(name == "x" || name == "y" || name == "z" || name == "nx" || name == "ny" || name == "nz" || !ps.add_property_map<double>(name, 0.).second)
+    const bool reserved = name == "x" || name == "y" || name == "z" || name == "nx" || name == "ny" || name == "nz";
+    const std::pair<Point_set::Property_map<double>, bool> added =
+      reserved ? std::make_pair(Point_set::Property_map<double>(), false) : ps.add_property_map<double>(name, 0.);
+    if(!added.second)
       throw py::value_error("properties['" + name + "']: the name is taken (x, y, z, nx, ny, nz or a duplicate)");
-    Point_set::Property_map<double> d = ps.property_map<double>(name).first;
+    const Point_set::Property_map<double>& d = added.first;
     const double* v = values.data();
     for(Point_set::Index i : ps) d[i] = *v++;
   }
@@ -123,6 +135,60 @@ void write(const std::string& path, const Coordinates& points, const py::object&
   }
 }
 
+std::vector<wavejets_demo::Vec3> to_vec3(const Coordinates& a)
+{
+  std::vector<wavejets_demo::Vec3> v(std::size_t(a.shape(0)));
+  const double* p = a.data();
+  for(wavejets_demo::Vec3& x : v) { x = {{p[0], p[1], p[2]}}; p += 3; }
+  return v;
+}
+
+/// Draws one point set (splats; `normals` required) or mesh (`faces`; without normals, the faces'
+/// area-weighted vertex normals) into a PNG at `path`, written atomically. The Python layer checks
+/// the arguments and supplies normals for a point set without.
+void render(const std::string& path, const Coordinates& points, const py::object& normals, const py::object& faces,
+            const py::object& values, int width, int height, const std::array<double, 3>& view,
+            const std::array<double, 3>& up, double splat)
+{
+  check_coordinates(points, "points");
+  if(!normals.is_none()) check_coordinates(normals.cast<Coordinates>(), "normals", long(points.shape(0)));
+  wavejets_demo::Cloud cloud;
+  cloud.points = to_vec3(points);
+  if(!faces.is_none()) cloud.faces = faces.cast<wavejets_demo::Faces>();
+  cloud.normals = normals.is_none() ? wavejets_demo::vertex_normals(cloud.points, cloud.faces)
+                                    : to_vec3(normals.cast<Coordinates>());
+  if(!values.is_none()) cloud.scalar = values.cast<std::vector<double> >();
+  wavejets_demo::View_options options;
+  options.width = width;
+  options.height = height;
+  options.view = view;
+  options.up = up;
+  options.splat = splat;
+  py::gil_scoped_release release;
+  if(cloud.points.size() >= 3) {   // the splat size (CGAL::compute_average_spacing needs 2 neighbors)
+    const Index_range range = index_range(cloud.points.size());
+    cloud.spacing = CGAL::compute_average_spacing<CGAL::Parallel_if_available_tag>(range, 6,
+                      CGAL::parameters::point_map(Point_map{points.data(), nullptr}));
+  }
+  wavejets_demo::Image image;
+  try {
+    image = wavejets_demo::render({&cloud}, options);
+  } catch(const std::invalid_argument& e) {
+    throw py::value_error(e.what());
+  }
+  try {
+    wavejets_demo::Output_file out(path);
+    try {
+      wavejets_demo::write_png(image, out.temporary_path());
+    } catch(const std::runtime_error& e) {
+      throw std::runtime_error(path + ": " + e.what());
+    }
+    out.commit();
+  } catch(const std::runtime_error& e) {
+    throw py::value_error(e.what());
+  }
+}
+
 } // namespace
 
 void bind_io(py::module_& m)
@@ -130,6 +196,9 @@ void bind_io(py::module_& m)
   m.def("read", &read, "Low-level binding: use wavejets.read.", py::arg("path"));
   m.def("write", &write, "Low-level binding: use wavejets.write.", py::arg("path"), py::arg("points"), py::arg("normals"),
         py::arg("faces"), py::arg("properties"), py::arg("ascii"));
+  m.def("render", &render, "Low-level binding: use wavejets.render.", py::arg("path"), py::arg("points"), py::arg("normals"),
+        py::arg("faces"), py::arg("values"), py::arg("width"), py::arg("height"), py::arg("view"), py::arg("up"),
+        py::arg("splat"));
 }
 
 } // namespace wavejets_python

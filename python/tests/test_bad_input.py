@@ -59,8 +59,15 @@ CASES = [
     ("read", ("/nonexistent/cloud.ply",), {}, ValueError, "cloud.ply: cannot open"),
     ("read", ("cloud.abc",), {}, ValueError, "unsupported format"),
     ("write", ("out.ply", POINTS[:, :2]), {}, ValueError, "points: expected an (N, 3) array"),
-    ("write", ("out.ply", POINTS), {"faces": [[0, 1, 500]]}, ValueError, "faces: face 0 refers to vertex 500"),
+    ("write", ("out.ply", POINTS), {"faces": [[0, 1, 500]]}, ValueError, "faces: face 0 refers to a vertex outside 0..499"),
     ("write", ("out.off", POINTS), {}, ValueError, "a point set (no faces) is written as .ply"),
+    ("render", ("out.png", WITH_NAN), {}, ValueError, "points: row 17 has a NaN"),
+    ("render", ("out.png", POINTS), {"values": np.ones(499)}, ValueError, "values: expected 500 numbers"),
+    ("render", ("out.png", POINTS), {"values": np.full(500, np.inf)}, ValueError, "values: NaN or infinite at point 0"),
+    ("render", ("out.png", POINTS), {"faces": [[0, 1, -1]]}, ValueError, "faces: face 0 refers to a vertex outside"),
+    ("render", ("out.png", POINTS), {"view": (0, 0, 0)}, ValueError, "view: expected three finite numbers"),
+    ("render", ("out.png", POINTS), {"width": 0}, ValueError, "width: must be >= 1"),
+    ("render", ("/nonexistent/out.png", POINTS), {}, ValueError, "out.png: cannot create a file"),
 ]
 
 

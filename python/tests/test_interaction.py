@@ -52,6 +52,43 @@ def test_ctrl_c_stops_a_running_call_promptly():
     assert wavejets.estimate_normals(points[:1000], k=10).shape == (1000, 3)
 
 
+def test_other_python_threads_run_during_a_call():
+    """The GIL is released while computing: a Python thread keeps ticking through a long call."""
+    points = torus(300000)
+    ticks = []
+    stop = threading.Event()
+
+    def tick():
+        while not stop.is_set():
+            ticks.append(time.monotonic())
+            time.sleep(0.005)
+
+    ticker = threading.Thread(target=tick)
+    ticker.start()
+    start = time.monotonic()
+    wavejets.enhance_positions(points, k=40, order=4)
+    end = time.monotonic()
+    stop.set()
+    ticker.join()
+    during = [t for t in ticks if start < t < end]
+    gaps = np.diff([start] + during + [end])
+    assert end - start > 0.5                  # a long call (seconds on 2 cores)
+    assert len(during) >= 20                  # with the GIL held there would be none
+    assert gaps.max() < 0.5 * (end - start)   # and they are spread over the whole call
+
+
+def test_ctrl_c_after_writing_a_file_raises_keyboard_interrupt(tmp_path):
+    """Writing a file leaves Python's SIGINT handler in place (the tool's own, which removes the
+    temporary file and exits, is not installed by the module)."""
+    points = torus(1000)
+    wavejets.write(tmp_path / "cloud.ply", points)
+    wavejets.render(tmp_path / "cloud.png", points, width=100, height=100)
+    with pytest.raises(KeyboardInterrupt):
+        os.kill(os.getpid(), signal.SIGINT)
+        time.sleep(1.0)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["cloud.ply", "cloud.png"]
+
+
 def test_float64_input_is_not_copied():
     points = torus(200000)
     tracemalloc.start()

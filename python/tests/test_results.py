@@ -124,3 +124,19 @@ def test_duplicates_and_far_coordinates_are_fitted_or_reported():
     fitted = report.fitted
     assert np.allclose(np.linalg.norm(normals[fitted], axis=1), 1.0)
     assert np.all(normals[~fitted] == 0)
+
+
+def test_render_writes_a_png_of_the_requested_size(kitten_path, tmp_path):
+    """The binding of the tool's renderer (whose pixels the tool's tests check): a point set
+    coloured by values, and a mesh without normals."""
+    points, normals, _ = wavejets.read(kitten_path)
+    curvature = wavejets.estimate_curvatures(points, normals, k=30).mean_curvature
+    path = tmp_path / "kitten.png"
+    wavejets.render(path, points, normals, values=curvature, width=300, height=200)
+    png = path.read_bytes()
+    assert png[:8] == b"\x89PNG\r\n\x1a\n"
+    width, height = int.from_bytes(png[16:20], "big"), int.from_bytes(png[20:24], "big")
+    assert (width, height) == (300, 200)
+    triangle = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0]])
+    wavejets.render(tmp_path / "triangle.png", triangle, faces=[[0, 1, 2]], width=64, height=64)
+    assert (tmp_path / "triangle.png").stat().st_size > 100

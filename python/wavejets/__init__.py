@@ -22,7 +22,7 @@ from ._report import Report
 from ._functions import (Curvatures, enhance_normals, enhance_positions, estimate_curvatures,
                          estimate_normals, fit)
 from ._wavejets import Wavejet
-from ._io import read, write
+from ._io import read, render, write
 
 __all__ = ["estimate_normals", "estimate_curvatures", "enhance_positions", "enhance_normals", "fit",
-           "read", "write", "Curvatures", "Report", "Wavejet", "__version__"]
+           "read", "write", "render", "Curvatures", "Report", "Wavejet", "__version__"]
