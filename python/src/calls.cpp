@@ -101,11 +101,9 @@ void check_coordinates(const Coordinates& a, const char* name, long rows)
 
 Coordinates copy_or_zeros(const py::object& source, std::size_t n)
 {
+  if(source.is_none() || n == 0) return zeros<double>({py::ssize_t(n), 3});
   Coordinates out({py::ssize_t(n), py::ssize_t(3)});
-  if(source.is_none() || n == 0)
-    std::fill(out.mutable_data(), out.mutable_data() + 3 * n, 0.);
-  else
-    std::memcpy(out.mutable_data(), source.cast<Coordinates>().data(), 3 * n * sizeof(double));
+  std::memcpy(out.mutable_data(), source.cast<Coordinates>().data(), 3 * n * sizeof(double));
   return out;
 }
 

@@ -18,7 +18,6 @@
 #include <CGAL/wavejet_estimate_curvatures.h>
 #include <CGAL/wavejet_estimate_normals.h>
 
-#include <algorithm>
 
 namespace wavejets_python {
 
@@ -59,13 +58,12 @@ struct Arrays
   Index_range range;           // 0..N-1, the range the functions run over
 
   Arrays(const Coordinates& p, const py::object& input_normals)
-    : points(p), normals(input_normals), fitted(py::array_t<bool>(p.ndim() == 2 ? p.shape(0) : 0)),
+    : points(p), normals(input_normals), fitted(zeros<bool>({p.ndim() == 2 ? p.shape(0) : 0})),
       n(p.ndim() == 2 ? std::size_t(p.shape(0)) : 0), range(index_range(n))
   {
     check_coordinates(points, "points");
     if(!normals.is_none())
       check_coordinates(normals.cast<Coordinates>(), "normals", long(n));
-    std::fill(fitted.mutable_data(), fitted.mutable_data() + n, false);
   }
   bool has_normals() const { return !normals.is_none(); }
   Point_map point_map(double* out = nullptr) const { return Point_map{points.data(), out}; }
@@ -96,9 +94,9 @@ py::tuple estimate_curvatures(const Coordinates& points, const py::object& norma
 {
   Arrays a(points, normals);
   const Call c = read_call(kwargs, CGAL::Wavejets::Point_set_function::ESTIMATE_CURVATURES, a.n);
-  py::array_t<double> H(a.n), K(a.n), k1(a.n), k2(a.n);
-  Coordinates d1 = copy_or_zeros(py::none(), a.n), d2 = copy_or_zeros(py::none(), a.n);
-  for(py::array_t<double>* v : {&H, &K, &k1, &k2}) std::fill(v->mutable_data(), v->mutable_data() + a.n, 0.);
+  const py::ssize_t n = py::ssize_t(a.n);
+  py::array_t<double> H = zeros<double>({n}), K = zeros<double>({n}), k1 = zeros<double>({n}), k2 = zeros<double>({n});
+  Coordinates d1 = zeros<double>({n, 3}), d2 = zeros<double>({n, 3});
   const auto pack = WP::order(c.order).curvature_frame(c.fitting.curvature_frame)
                       .mean_curvature_map(Scalar_map{H.mutable_data()}).gaussian_curvature_map(Scalar_map{K.mutable_data()})
                       .maximal_principal_curvature_map(Scalar_map{k1.mutable_data()})
