@@ -23,7 +23,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 TEMPLATE_DIR = os.path.join(HERE, "templates")
 CSV_DIR = os.path.join(HERE, "csv")  # --csv-dir DIR: read another run's CSV files
 OUT_DIR = HERE  # --out-dir DIR: write the reports and plots there
-REPORTS = ["results", "accuracy", "accuracy_ponca", "filters", "workflows"]
+REPORTS = ["results", "accuracy", "accuracy_ponca", "filters", "workflows", "python"]
 MAX_REPORT_BYTES = 40 * 1024
 
 
@@ -274,8 +274,37 @@ def plot_workflows(plt):
     return fig
 
 
+def plot_python(plt):
+    """python.md: error against time of every (order, k) of the grid and of Open3D, one panel a surface
+    (the noise levels as marker shapes)."""
+    rows = read_csv("python.grid")[1:]
+    surfaces = list(dict.fromkeys(r[0] for r in rows))
+    noises = list(dict.fromkeys(r[1] for r in rows))
+    markers = ["o", "s", "^", "D"]
+    colors = {"Open3D": "black", "wavejets K 1": "#9467bd", "wavejets K 2": "#1f77b4", "wavejets K 3": "#2ca02c",
+              "wavejets K 4": "#d62728"}
+    fig, axes = plt.subplots(1, len(surfaces), figsize=(5 * len(surfaces), 4.5))
+    for ax, surface in zip(axes, surfaces):
+        for method, color in colors.items():
+            for noise, marker in zip(noises, markers):
+                points = [(float(r[4]), float(r[5])) for r in rows if r[0] == surface and r[1] == noise and r[2] == method]
+                if points:
+                    ax.plot(*zip(*sorted(points)), marker=marker, color=color, lw=0.8 if method != "Open3D" else 0,
+                            ms=7 if method == "Open3D" else 5,
+                            label=f"{method} (k {', '.join(r[3] for r in rows if r[2] == method and r[0] == surface and r[1] == noise)})"
+                            if noise == noises[-1] else None)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("time (s)")
+        ax.set_ylabel("mean angle error (deg)")
+        ax.set_title(f"{surface}: noise {', '.join(f'{n} ({m})' for n, m in zip(noises, markers))}", fontsize=9)
+        ax.grid(alpha=0.3, which="both")
+    axes[0].legend(fontsize=7)
+    return fig
+
+
 PLOTS = {"results": plot_results, "accuracy": plot_accuracy, "accuracy_ponca": plot_accuracy_ponca,
-         "filters": plot_filters, "workflows": plot_workflows}
+         "filters": plot_filters, "workflows": plot_workflows, "python": plot_python}
 
 
 def write_plots(reports):
