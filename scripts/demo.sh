@@ -9,7 +9,8 @@
 #   then moved along them) next to the direct enhancement;
 # - on the kitten scan (examples/Wavejets/data/kitten.xyz, a point set): curvature, position
 #   enhancement (gain 2), flattening (gain 0), inversion (gain -1), normal enhancement (gain 3)
-#   and twist (gain 2i).
+#   and twist (gain 2i);
+# - the Python module (python/, built beside the tool): the NumPy example on the kitten.
 # Writes the PLY files (open them in MeshLab or CloudCompare) and before/after PNG pictures to the
 # folder given as $1 (default: out/). The pictures of the user manual (doc/Wavejets/fig) are the
 # same, rendered with --width 560 --height 360.
@@ -19,7 +20,7 @@ out="$(mkdir -p "${1:-$root/out}" && cd "${1:-$root/out}" && pwd)"
 bash "$root/scripts/install_dependencies.sh"
 build="${WAVEJETS_BUILD_DIR:-$root/build/release}"   # another build folder: WAVEJETS_BUILD_DIR=...
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DWAVEJETS_BUILD_BENCHMARKS=OFF > /dev/null
-cmake --build "$build" -j2 --target wavejets
+cmake --build "$build" -j2 --target wavejets _wavejets
 wavejets="$build/demo/Wavejets/wavejets"
 data="$root/examples/Wavejets/data/kitten.xyz"
 run() { echo "\$ wavejets $*"; "$wavejets" "$@"; echo; }
@@ -75,6 +76,11 @@ run render --compare "$data" "$out/kitten_enhanced_normals.ply" "$out/kitten_enh
 echo "== Twist of the normals (gain 2i): input left, result right"
 run enhance-normals "$data" "$out/kitten_twisted_normals.ply" --gain 0,2
 run render --compare "$data" "$out/kitten_twisted_normals.ply" "$out/kitten_twisted_normals.png"
+
+echo "== Python: normals and curvature of the kitten on NumPy arrays (python/examples/numpy_curvature.py)"
+echo "\$ PYTHONPATH=$build/python /usr/bin/python3 python/examples/numpy_curvature.py --out $out/python"
+PYTHONPATH="$build/python" /usr/bin/python3 "$root/python/examples/numpy_curvature.py" --out "$out/python"
+echo
 
 echo "Results in $out:"
 ls -l "$out" | tail -n +2
