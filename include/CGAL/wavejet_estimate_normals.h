@@ -178,6 +178,45 @@ normals that are read always orient the frames.
                    `PointRange` and whose value type is `bool`}
     \cgalParamDefault{unused}
   \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::tile_size}
+    \cgalParamDescription{process the points in spatial tiles of at most this many points, each fitted among the
+                          points of a halo around it, instead of all at once: the search structure and the
+                          working memory are those of one tile. The results are those of the run without tiles,
+                          bit for bit: a point whose neighborhood (or, in a Hermite fit on estimated normals, one
+                          of its neighbors' neighborhoods) reaches past its tile's halo is fitted again with a
+                          larger halo, and counted in the report (\ref Wavejets_tiles). 0: no tiles}
+    \cgalParamType{an integer, `>= 0`}
+    \cgalParamDefault{0}
+    \cgalParamExtra{under `Parallel_tag` the tiles are processed side by side, one per thread}
+  \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::tile}
+    \cgalParamDescription{the range is one tile of a larger point set (`Wavejets::Tile`: the points of that set in
+                          `extent`, in their order in it): only the points of `owned_map` are fitted, and a result is
+                          written only where it is that of the whole point set; the others are marked in `outside_map`
+                          (\ref Wavejets_tiles)}
+    \cgalParamType{`Wavejets::Tile`}
+    \cgalParamDefault{unused}
+    \cgalParamExtra{not with `tile_size`}
+  \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::owned_map}
+    \cgalParamDescription{with `tile`: the points to fit (the others are neighbors only)}
+    \cgalParamType{a model of `ReadablePropertyMap` whose key type is the value type of the iterator of
+                   `PointRange` and whose value type is `bool`}
+    \cgalParamDefault{every point}
+  \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::outside_map}
+    \cgalParamDescription{with `tile`: receives, for every point, whether it is an owned point whose neighborhood
+                          reaches past the tile's extent (not fitted, not written: run it again in a larger tile)}
+    \cgalParamType{a model of `WritablePropertyMap` whose key type is the value type of the iterator of
+                   `PointRange` and whose value type is `bool`}
+    \cgalParamDefault{unused (such points are only counted in the report)}
+  \cgalParamNEnd
+  \cgalParamNBegin{Wavejets::parameters::tile_halo}
+    \cgalParamDescription{the width of the first halo of every tile, world units (0: from each tile's density, or
+                          the `neighbor_radius`). Too small a halo costs time, never exactness}
+    \cgalParamType{`double`, finite and `>= 0`}
+    \cgalParamDefault{0}
+  \cgalParamNEnd
 \cgalNamedParamsEnd
 
 \return a `Wavejets::Processing_report`: points that could not be fitted keep their normal and are counted.

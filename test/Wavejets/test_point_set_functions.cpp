@@ -119,13 +119,6 @@ static double max_knn_radius(const PV_range& pts, std::size_t k, std::size_t str
   return rho;
 }
 
-static bool read_xyz(const std::string& fname, PV_range& pts)
-{
-  return CGAL::IO::read_points(fname, std::back_inserter(pts),
-                               CGAL::parameters::point_map(Point_map()).normal_map(Normal_map())) &&
-         !pts.empty();
-}
-
 // ---------------------------------------------------------------------------------------------
 // 1. Sphere growth with radius neighborhoods: analytic displacement.
 // ---------------------------------------------------------------------------------------------

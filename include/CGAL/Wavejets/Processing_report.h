@@ -37,6 +37,16 @@ struct Processing_report
   /// True for the reports of `wavejet_enhance_positions`, the one function that moves points (and
   /// so clamps motions): `number_of_clamped_points` is meaningful, and printed, only then.
   bool moves_points = false;
+  /// The number of tiles the points were processed in: 1 in core, more with the named parameter
+  /// `Wavejets::parameters::tile_size` (0 for an empty range).
+  std::size_t number_of_tiles = 0;
+  /// Tiled runs: the points whose neighborhood reached past the first halo of their tile, fitted again
+  /// with a larger one (their results are exact like every other point's).
+  std::size_t number_of_repaired_points = 0;
+  /// With `Wavejets::parameters::tile`: the owned points whose neighborhood reaches past the tile's
+  /// extent, neither fitted nor written (they are marked in `outside_map`; the other counts are those
+  /// of the owned points).
+  std::size_t number_of_outside_points = 0;
   /// True if the callback stopped the computation; then nothing at all was written.
   bool interrupted = false;
 };
@@ -48,6 +58,9 @@ inline std::ostream& operator<<(std::ostream& os, const Processing_report& r)
      << r.number_of_unfitted_points << " not fitted (" << r.number_of_non_finite_points << " non-finite), "
      << r.number_of_reduced_order_points << " at reduced order";
   if(r.moves_points) os << ", " << r.number_of_clamped_points << " clamped";
+  if(r.number_of_outside_points > 0) os << ", " << r.number_of_outside_points << " reaching past the tile";
+  if(r.number_of_tiles > 1)
+    os << ", " << r.number_of_tiles << " tiles (" << r.number_of_repaired_points << " points with a larger halo)";
   os << (r.interrupted ? ", interrupted (nothing written)" : "");
   return os;
 }

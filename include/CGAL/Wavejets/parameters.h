@@ -45,6 +45,11 @@ namespace Wavejets {
   X(write_normals)               /* enhance_positions: also write the Wavejet normals           */ \
   X(move_along_input_normals)    /* enhance_positions: move along the input normals             */ \
   X(fitted_map)                  /* writable bool map: true where a Wavejet was fitted          */ \
+  X(tile_size)                   /* tiled run: at most this many points per tile (0: in core)   */ \
+  X(tile_halo)                   /* tiled run: first halo width of each tile (0: estimated)     */ \
+  X(tile)                        /* Wavejets::Tile: the range is one tile of a larger point set */ \
+  X(owned_map)                   /* with tile: readable bool map, the points to fit             */ \
+  X(outside_map)                 /* with tile: writable bool map, fits that reach past the tile */ \
   X(mean_curvature_map)                                                                            \
   X(gaussian_curvature_map)                                                                        \
   X(maximal_principal_curvature_map)                                                               \

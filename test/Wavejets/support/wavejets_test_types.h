@@ -14,9 +14,12 @@
 // (`using namespace wavejets_test::types;`).
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/IO/read_points.h>
 #include <CGAL/property_map.h>
 #include <CGAL/tags.h>
 
+#include <iterator>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -36,6 +39,14 @@ typedef CGAL::Parallel_tag Par;
 #else
 typedef CGAL::Sequential_tag Par; ///< without TBB, the parallel runs are sequential
 #endif
+
+/// Reads a point set with normals (e.g. data/kitten.xyz); false if unreadable or empty.
+inline bool read_xyz(const std::string& fname, PV_range& pts)
+{
+  return CGAL::IO::read_points(fname, std::back_inserter(pts),
+                               CGAL::parameters::point_map(Point_map()).normal_map(Normal_map())) &&
+         !pts.empty();
+}
 
 } // namespace types
 } // namespace wavejets_test

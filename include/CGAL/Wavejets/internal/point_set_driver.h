@@ -16,11 +16,13 @@
 //   per-function kernel writes into a buffer slot per point -> the function commits the buffers
 //   after all points are done (never in place), or nothing at all if interrupted.
 // Every point's result depends only on the unmodified input, so Sequential_tag and Parallel_tag
-// give bitwise identical results.
+// give bitwise identical results. With the named parameter `tile_size`, the same passes run tile by
+// tile over the points of each tile and a halo of neighbors (tiled_driver.h), with the same results.
 
 #include <CGAL/Wavejets/Fitting_options.h>
 #include <CGAL/Wavejets/Function_defaults.h>
 #include <CGAL/Wavejets/Processing_report.h>
+#include <CGAL/Wavejets/Tile.h>
 #include <CGAL/Wavejets/parameters.h>
 #include <CGAL/Wavejets/internal/cgal_compatibility.h>
 #include <CGAL/Wavejets/internal/fitting_core.h>
@@ -41,6 +43,7 @@
 #include <cmath>
 #include <functional>
 #include <iterator>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -73,6 +76,10 @@ struct Driver_settings
   bool restrict_to_consistent_normals = false;
   bool use_neighbor_normals = false;       // Hermite fit (normals: the input's, or estimated first)
   std::function<bool(double)> callback;    // empty if not given
+  std::size_t tile_size = 0;               // tiled run: at most this many points per tile (0: in core)
+  double tile_halo = 0.;                   // first halo of each tile, world units (0: estimated)
+  bool is_tile = false;                    // the range is one tile of a larger point set: `tile`
+  Tile tile;
 };
 
 /// The requested order K: `Wavejets::parameters::order`, or \cgal's `degree_fitting` (the name the jet
@@ -164,6 +171,18 @@ Driver_settings read_settings(PointRange& points, unsigned int k, const NP& np, 
   s.restrict_to_consistent_normals = choose_parameter(get_parameter(np, wnp::restrict_to_consistent_normals), false);
   s.use_neighbor_normals = choose_parameter(get_parameter(np, wnp::use_neighbor_normals), false);
   s.callback = choose_parameter(get_parameter(np, CGAL::internal_np::callback), std::function<bool(double)>());
+  const long long tile_size = static_cast<long long>(choose_parameter(get_parameter(np, wnp::tile_size), 0));
+  require(tile_size >= 0, fn, "tile_size must be >= 0");
+  s.tile_size = std::size_t(tile_size);
+  s.tile_halo = to_double(choose_parameter(get_parameter(np, wnp::tile_halo), 0.));
+  require(std::isfinite(s.tile_halo) && s.tile_halo >= 0, fn, "tile_halo must be finite and >= 0");
+  if constexpr(!CGAL::parameters::is_default_parameter<NP, wnp::tile_t>::value)
+  {
+    s.is_tile = true;
+    s.tile = get_parameter(np, wnp::tile);
+    require(s.tile_size == 0, fn, "tile (one tile of a larger point set) and tile_size (cut this range into tiles) "
+                                  "exclude each other");
+  }
   // The input normals are read when a setting uses them, and then they also orient the frames (the
   // functions whose outputs have a side use them whenever the range has them).
   const bool asked = choose_parameter(get_parameter(np, wnp::orient_with_input_normals), false) ||
@@ -205,20 +224,25 @@ struct Point_set_input
   typedef typename PointRange::iterator iterator;
   typedef std::decay_t<decltype(CGAL::parameters::get_parameter(std::declval<const NP&>(),
                                                                 Wavejets::internal_np::fitted_map))> Fitted_map;
+  typedef std::decay_t<decltype(CGAL::parameters::get_parameter(std::declval<const NP&>(),
+                                                                Wavejets::internal_np::outside_map))> Outside_map;
 
   Point_map point_map;
   Normal_map normal_map;
   Fitted_map fitted_map;                     // CGAL::internal_np::Param_not_found if not given
+  Outside_map outside_map;                   // with `tile` (idem)
   bool has_normals;
   std::vector<iterator> items;               // range order
   std::vector<Neighbor_query::Point> points; // double copy (fed to the kd-tree)
   std::vector<unsigned char> finite;         // point i has finite coordinates
   std::vector<Eigen::Vector3d> normals;      // input normals (empty if none are read)
+  std::vector<unsigned char> owned;          // with `tile`: the points to fit (empty: all)
 
   /// `read_normals`: copy the input normals (`Driver_settings::read_input_normals`).
   Point_set_input(PointRange& range, const NP& np, bool read_normals)
     : point_map(NP_helper::get_point_map(range, np)), normal_map(read_normal_map(range, np)),
       fitted_map(CGAL::parameters::get_parameter(np, Wavejets::internal_np::fitted_map)),
+      outside_map(CGAL::parameters::get_parameter(np, Wavejets::internal_np::outside_map)),
       has_normals(has_normal_map(range, np))
   {
     for(iterator it = range.begin(); it != range.end(); ++it) items.push_back(it);
@@ -230,6 +254,12 @@ struct Point_set_input
       points.emplace_back(to_double(p.x()), to_double(p.y()), to_double(p.z()));
       const Neighbor_query::Point& q = points.back();
       finite.push_back(std::isfinite(q.x()) && std::isfinite(q.y()) && std::isfinite(q.z()));
+    }
+    if constexpr(!CGAL::parameters::is_default_parameter<NP, Wavejets::internal_np::owned_map_t>::value)
+    {
+      const auto owned_map = CGAL::parameters::get_parameter(np, Wavejets::internal_np::owned_map);
+      owned.reserve(items.size());
+      for(const iterator& it : items) owned.push_back(get(owned_map, *it) ? 1 : 0);
     }
     if(read_normals && has_normals)
     {
@@ -253,6 +283,11 @@ struct Point_set_input
   }
 
   std::size_t size() const { return items.size(); }
+  /// The pass's interface to its points (a tile's input, tiled_driver.h, has the same): every point
+  /// is fitted, its index is its index in the range, and its neighbors are all there.
+  static constexpr bool checks_reach = false;
+  static bool is_active(std::size_t) { return true; }
+  static std::size_t index_in_range(std::size_t i) { return i; }
   Eigen::Vector3d position(std::size_t i) const { return Eigen::Vector3d(points[i].x(), points[i].y(), points[i].z()); }
   static Vector_3 to_vector(const Eigen::Vector3d& v) { return Vector_3(v.x(), v.y(), v.z()); }
 };
@@ -263,7 +298,8 @@ struct Point_set_input
 /// functions' kernels do (the filters' formulas are written in rescaled units, doc/Wavejets/Mathematics.txt).
 struct Fitted_point
 {
-  std::size_t index;
+  std::size_t index;          // in the range (and the function's per-point buffers)
+  std::size_t local;          // in the pass's input (the index in the range, but in a tiled run)
   const Fit_result& fit;
   const double* coefficients; // rescaled units (see Fitter::coefficients())
 
@@ -287,27 +323,50 @@ inline Eigen::Vector3d surface_normal(const Fitted_point& fp)
 struct Normal_writer
 {
   std::vector<Eigen::Vector3d>* normals;
-  void operator()(const Fitted_point& fp) const { (*normals)[fp.index] = surface_normal(fp); }
+  void operator()(const Fitted_point& fp) const { (*normals)[fp.local] = surface_normal(fp); }
 };
 
 /// Per-point statuses of a run, and the summary.
 struct Driver_run
 {
-  std::vector<unsigned char> fitted; // 1 where the kernel was called
+  std::vector<unsigned char> fitted;  // 1 where the kernel was called
+  std::vector<unsigned char> outside; // with `tile`: 1 where the fit reached past the tile (else empty)
   Processing_report report;
 };
 
+/// Per-point outcome of one pass over the points of an input (indexed like the input).
+struct Pass_result
+{
+  std::vector<unsigned char> status;  // Fit_status (TOO_FEW_POINTS where not fitted); empty if the
+                                      // pass of the neighbors' normals was interrupted
+  std::vector<unsigned char> reduced; // 1 where the order was lowered
+  std::vector<unsigned char> fitted;  // 1 where the kernel was called
+  std::vector<double> reach;          // Input::checks_reach only: Point_fitter::reach() of each fit
+  std::vector<unsigned char> outside; // Input::checks_reach only: 1 where that ball leaves the input's
+                                      // points (the point was not fitted)
+  bool interrupted = false;
+};
+
+/// What a pass fits: the input's active points, their result checked against the input's extent
+/// (MAIN), or every point without that check (NEIGHBOR_NORMALS, the first pass of the Hermite fit,
+/// whose normals the main pass checks through its reach).
+enum class Pass_kind { MAIN, NEIGHBOR_NORMALS };
+
 template <class ConcurrencyTag, class Input, class Kernel>
-Driver_run fit_each_point(const Input& input, const Driver_settings& settings, const Kernel& kernel);
+Pass_result fit_pass(const Input& input, const Driver_settings& settings, const Kernel& kernel,
+                     Pass_progress* parent, Pass_kind kind);
 
 /// The neighbors' normals of the Hermite fit (use_neighbor_normals; null without it): the input normals
 /// when they were read, else they are estimated first into `estimated` by a pass of
 /// wavejet_estimate_normals' fit (same neighborhoods, order and weights; tangent-plane search at order 2
 /// with 2 re-fits; unoriented, which the slope equations do not mind). Points without a normal
-/// (unfitted) give no slope rows. `interrupted`: the callback stopped that pass.
+/// (unfitted) give no slope rows. `first_reach`: the reach of each estimated normal (tiled runs only).
+/// `interrupted`: the callback stopped that pass.
 template <class ConcurrencyTag, class Input>
 const std::vector<Eigen::Vector3d>* hermite_normals(const Input& input, const Driver_settings& settings,
-                                                    std::vector<Eigen::Vector3d>& estimated, bool& interrupted)
+                                                    std::vector<Eigen::Vector3d>& estimated,
+                                                    std::vector<double>& first_reach, Pass_progress* parent,
+                                                    bool& interrupted)
 {
   interrupted = false;
   if(!settings.use_neighbor_normals)
@@ -320,7 +379,10 @@ const std::vector<Eigen::Vector3d>* hermite_normals(const Input& input, const Dr
   first.fitting.correction_iterations = 2;
   first.fitting.curvature_frame = Curvature_frame::TANGENT_FRAME;
   estimated.assign(input.size(), Eigen::Vector3d::Zero());
-  interrupted = fit_each_point<ConcurrencyTag>(input, first, Normal_writer{&estimated}).report.interrupted;
+  Pass_result pass = fit_pass<ConcurrencyTag>(input, first, Normal_writer{&estimated}, parent,
+                                              Pass_kind::NEIGHBOR_NORMALS);
+  interrupted = pass.interrupted;
+  first_reach = std::move(pass.reach);
   return &estimated;
 }
 
@@ -360,6 +422,27 @@ public:
   /// The coefficients of the last fit (see Fitter::coefficients()).
   const double* coefficients() const { return fitter_.coefficients(); }
 
+  /// The reach of the last fit, of point i: a radius around point i such that the fit depends only on
+  /// the input's points in that ball (doc/Wavejets/Mathematics.txt §12). The distance to its last
+  /// neighbor when the search found its k (its k nearest are then those of any larger point set that
+  /// has no other point in that ball), else the search radius (infinite for a k-nearest search).
+  /// With estimated neighbors' normals (`first_reach`: the reach of each), also the balls of their fits.
+  template <class Input>
+  double reach(std::size_t i, const Input& input, const Driver_settings& settings,
+               const std::vector<double>* first_reach) const
+  {
+    const Eigen::Vector3d p = input.position(i);
+    double r = std::numeric_limits<double>::infinity();
+    if(settings.k > 0 && neighbors_.size() == settings.k) r = (input.position(neighbors_.back()) - p).norm();
+    else if(settings.neighbor_radius > 0) r = settings.neighbor_radius;
+    if(first_reach)
+    {
+      r = (std::max)(r, (*first_reach)[i]);
+      for(std::size_t j : neighbors_) r = (std::max)(r, (input.position(j) - p).norm() + (*first_reach)[j]);
+    }
+    return r;
+  }
+
 private:
   Fitter fitter_;
   Fit_result fit_;
@@ -384,28 +467,32 @@ inline void count_points(Driver_run& run, const std::vector<unsigned char>& stat
   }
 }
 
-/// Runs `kernel(const Fitted_point&)` on every point that can be fitted. The kernel must only
-/// write to its own slot of per-point buffers (it runs concurrently under Parallel_tag).
+/// One pass over the points of `input` (see Pass_kind): runs `kernel(const Fitted_point&)` on every
+/// point that is fitted. The kernel must only write to its own slot of per-point buffers (it runs
+/// concurrently under Parallel_tag). `parent`: the progress of a tiled run (null: the pass reports
+/// to the callback itself).
 template <class ConcurrencyTag, class Input, class Kernel>
-Driver_run fit_each_point(const Input& input, const Driver_settings& settings, const Kernel& kernel)
+Pass_result fit_pass(const Input& input, const Driver_settings& settings, const Kernel& kernel,
+                     Pass_progress* parent, Pass_kind kind)
 {
   const std::size_t N = input.size();
-  Driver_run run;
-  run.report.number_of_points = N;
-  run.fitted.assign(N, 0);
-  std::vector<unsigned char> status(N, (unsigned char)(Fit_status::TOO_FEW_POINTS));
-  std::vector<unsigned char> reduced(N, 0);
-  if(N == 0) return run;
+  Pass_result result;
+  result.status.assign(N, (unsigned char)(Fit_status::TOO_FEW_POINTS));
+  result.reduced.assign(N, 0);
+  result.fitted.assign(N, 0);
+  if constexpr(Input::checks_reach)
+  {
+    result.reach.assign(N, std::numeric_limits<double>::infinity());
+    result.outside.assign(N, 0);
+  }
+  if(N == 0) return result;
 
   std::vector<Eigen::Vector3d> estimated_normals;
-  bool first_pass_interrupted = false;
+  std::vector<double> first_reach;
   const std::vector<Eigen::Vector3d>* neighbor_normals =
-    hermite_normals<ConcurrencyTag>(input, settings, estimated_normals, first_pass_interrupted);
-  if(first_pass_interrupted)
-  {
-    run.report.interrupted = true;
-    return run;
-  }
+    hermite_normals<ConcurrencyTag>(input, settings, estimated_normals, first_reach, parent, result.interrupted);
+  if(result.interrupted) { result.status.clear(); return result; }
+  const std::vector<double>* reach_of_neighbor_normals = first_reach.empty() ? nullptr : &first_reach;
 
   const Neighbor_query query(input.points, input.finite, ConcurrencyTag());
   // Points are visited in the tree's spatial order (each point's result does not depend on it).
@@ -416,52 +503,91 @@ Driver_run fit_each_point(const Input& input, const Driver_settings& settings, c
   std::vector<std::size_t> chunks;
   for(std::size_t b = 0; b < N; b += chunk_size) chunks.push_back(b);
 
-  Pass_progress progress(settings.callback, N);
+  static const std::function<bool(double)> no_callback;
+  Pass_progress progress(parent ? no_callback : settings.callback, N, parent);
   std::atomic<bool> interrupted(false);
+  const bool checked = kind == Pass_kind::MAIN;
 
   CGAL::for_each<ConcurrencyTag>(chunks, [&](const std::size_t begin) -> bool {
     Point_fitter fitter;
     const std::size_t end = (std::min)(begin + chunk_size, N);
+    std::size_t done = 0;
     for(std::size_t position = begin; position < end; ++position)
     {
       const std::size_t i = order[position];
       if(interrupted || progress.interrupted()) { interrupted = true; return false; }
-      if(!input.finite[i]) { status[i] = (unsigned char)(Fit_status::NON_FINITE_INPUT); continue; }
+      if(!input.is_active(i) && checked) continue;
+      done += input.is_active(i);
+      if(!input.finite[i]) { result.status[i] = (unsigned char)(Fit_status::NON_FINITE_INPUT); continue; }
       const Fit_result& fit = fitter.fit(i, input, settings, query, neighbor_normals);
-      status[i] = (unsigned char)(fit.status);
+      if constexpr(Input::checks_reach)
+      {
+        result.reach[i] = fitter.reach(i, input, settings, reach_of_neighbor_normals);
+        if(checked && !input.holds_ball(i, result.reach[i])) { result.outside[i] = 1; continue; }
+      }
+      result.status[i] = (unsigned char)(fit.status);
       if(!fit.success()) continue;
-      reduced[i] = fit.order < settings.order;
-      kernel(Fitted_point{i, fit, fitter.coefficients()});
-      run.fitted[i] = 1;
+      result.reduced[i] = fit.order < settings.order;
+      kernel(Fitted_point{input.index_in_range(i), i, fit, fitter.coefficients()});
+      result.fitted[i] = 1;
     }
-    progress.advance(end - begin);
+    progress.advance(done);
     return true;
   });
   if(!interrupted) progress.finish();
   if(progress.interrupted()) interrupted = true;
-  run.report.interrupted = interrupted;
-  count_points(run, status, reduced);
+  result.interrupted = interrupted;
+  return result;
+}
+
+template <class ConcurrencyTag, class Input, class Kernel>
+Driver_run fit_each_tile(const Input& input, const Driver_settings& settings, const Kernel& kernel);
+template <class ConcurrencyTag, class Input, class Kernel>
+Driver_run fit_one_tile(const Input& input, const Driver_settings& settings, const Kernel& kernel);
+
+/// Runs `kernel(const Fitted_point&)` on every point that can be fitted: in one pass over all the
+/// points, or tile by tile (the named parameter `tile_size`, tiled_driver.h), with the same results;
+/// or, when the range is one tile of a larger point set (`tile`), on its owned points.
+/// The kernel must only write to its own slot of per-point buffers (it runs concurrently under
+/// Parallel_tag).
+template <class ConcurrencyTag, class Input, class Kernel>
+Driver_run fit_each_point(const Input& input, const Driver_settings& settings, const Kernel& kernel)
+{
+  if(settings.is_tile)
+    return fit_one_tile<ConcurrencyTag>(input, settings, kernel);
+  if(settings.tile_size > 0 && input.size() > settings.tile_size)
+    return fit_each_tile<ConcurrencyTag>(input, settings, kernel);
+  Pass_result pass = fit_pass<ConcurrencyTag>(input, settings, kernel, nullptr, Pass_kind::MAIN);
+  Driver_run run;
+  run.report.number_of_points = input.size();
+  run.report.number_of_tiles = input.size() > 0 ? 1 : 0;
+  run.report.interrupted = pass.interrupted;
+  run.fitted = std::move(pass.fitted);
+  if(!pass.status.empty()) count_points(run, pass.status, pass.reduced); // else: no count (interrupted)
   return run;
 }
 
+/// Writes a per-point flag of a run (`fitted`, `outside`: empty means false) to an optional map.
 template <class Input>
-void write_fitted_map(const Input&, const Driver_run&, CGAL::internal_np::Param_not_found) {}
-template <class Input, class FittedMap>
-void write_fitted_map(const Input& input, const Driver_run& run, const FittedMap& map)
+void write_flag_map(const Input&, const std::vector<unsigned char>&, CGAL::internal_np::Param_not_found) {}
+template <class Input, class FlagMap>
+void write_flag_map(const Input& input, const std::vector<unsigned char>& flags, const FlagMap& map)
 {
   for(std::size_t i = 0; i < input.size(); ++i)
-    put(map, *input.items[i], bool(run.fitted[i]));
+    put(map, *input.items[i], !flags.empty() && bool(flags[i]));
 }
 
 /// Second pass of every function: unless the run was interrupted, calls `write(i, key)` for each
-/// fitted point i (in range order) and fills the optional `fitted_map`. Unfitted points are untouched.
+/// fitted point i (in range order) and fills the optional `fitted_map` and `outside_map`. Unfitted
+/// points are untouched.
 template <class Input, class Write>
 void commit(const Input& input, const Driver_run& run, const Write& write)
 {
   if(run.report.interrupted) return;
   for(std::size_t i = 0; i < input.size(); ++i)
     if(run.fitted[i]) write(i, *input.items[i]);
-  write_fitted_map(input, run, input.fitted_map);
+  write_flag_map(input, run.fitted, input.fitted_map);
+  write_flag_map(input, run.outside, input.outside_map);
 }
 
 /// `put` for an optional output map (a named parameter that may be absent).
@@ -473,5 +599,7 @@ void put_if_given(const Map& map, const Key& key, const Value& value) { put(map,
 } // namespace internal
 } // namespace Wavejets
 } // namespace CGAL
+
+#include <CGAL/Wavejets/internal/tiled_driver.h>
 
 #endif // CGAL_WAVEJETS_INTERNAL_POINT_SET_DRIVER_H
