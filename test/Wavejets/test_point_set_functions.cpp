@@ -44,6 +44,7 @@
 #include <vector>
 
 #include "analytic_surfaces.h"
+#include "wavejets_test_data.h"
 #include "wavejets_test_support.h"
 #include "wavejets_test_types.h"
 
@@ -1034,33 +1035,10 @@ static void test_neighborhood_center_and_written_normals()
   }
 }
 
-/// data/kitten.xyz with its normals, read once.
-static const PV_range& kitten()
-{
-  static const PV_range pts = [] {
-    PV_range v;
-    if(!read_xyz("data/kitten.xyz", v)) throw std::runtime_error("cannot read data/kitten.xyz");
-    return v;
-  }();
-  return pts;
-}
-
 /// 20000 random points of data/fandisk.off (normals (0, 0, 1)), made once.
 static const PV_range& fandisk()
 {
-  static const PV_range pts = [] {
-    CGAL::Surface_mesh<Point> mesh;
-    if(!CGAL::IO::read_polygon_mesh("data/fandisk.off", mesh) || mesh.number_of_faces() == 0)
-      throw std::runtime_error("cannot read data/fandisk.off");
-    PV_range v;
-    // The generator draws the triangle with `random` but the point inside it with
-    // CGAL::get_default_random() (CGAL 5.5.1): seed both, or the sample changes from run to run.
-    CGAL::Random random(42);
-    CGAL::get_default_random() = CGAL::Random(43);
-    CGAL::Random_points_in_triangle_mesh_3<CGAL::Surface_mesh<Point> > gen(mesh, random);
-    for(std::size_t i = 0; i < 20000; ++i, ++gen) v.emplace_back(*gen, Vector(0, 0, 1));
-    return v;
-  }();
+  static const PV_range pts = sample_mesh("data/fandisk.off", 20000, 42, Vector(0, 0, 1));
   return pts;
 }
 

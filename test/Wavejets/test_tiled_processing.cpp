@@ -7,11 +7,7 @@
 // Run from test/Wavejets; the argument names a case or a group of cases (--list).
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Surface_mesh.h>
-#include <CGAL/boost/graph/IO/polygon_mesh_io.h>
-#include <CGAL/point_generators_3.h>
 #include <CGAL/property_map.h>
-#include <CGAL/Random.h>
 #include <CGAL/tags.h>
 
 #include <CGAL/wavejet_estimate_normals.h>
@@ -29,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "wavejets_test_data.h"
 #include "wavejets_test_support.h"
 #include "wavejets_test_types.h"
 
@@ -142,28 +139,11 @@ void compare_tiled(const std::string& what, const PV_range& input, Setup s, std:
   check_equal(what + ", " + std::to_string(tile_size) + "-point tiles, parallel", in_core, parallel);
 }
 
-static const PV_range& kitten()
-{
-  static const PV_range pts = [] {
-    PV_range v;
-    if(!read_xyz("data/kitten.xyz", v)) throw std::runtime_error("cannot read data/kitten.xyz");
-    return v;
-  }();
-  return pts;
-}
-
 /// 100,000 random points on data/bunny00.off, with unoriented normals estimated in core (k 18).
 static const PV_range& bunny_sample()
 {
   static const PV_range pts = [] {
-    CGAL::Surface_mesh<Point> mesh;
-    if(!CGAL::IO::read_polygon_mesh("data/bunny00.off", mesh) || mesh.number_of_faces() == 0)
-      throw std::runtime_error("cannot read data/bunny00.off");
-    PV_range v;
-    CGAL::Random random(7);
-    CGAL::get_default_random() = CGAL::Random(8); // the generator also draws from it (CGAL 5.5.1)
-    CGAL::Random_points_in_triangle_mesh_3<CGAL::Surface_mesh<Point> > gen(mesh, random);
-    for(std::size_t i = 0; i < 100000; ++i, ++gen) v.emplace_back(*gen, Vector(0, 0, 0));
+    PV_range v = sample_mesh("data/bunny00.off", 100000, 7, CGAL::NULL_VECTOR);
     CGAL::wavejet_estimate_normals<Par>(v, 18, WJP::order(std::size_t(2)).point_map(pm).normal_map(nm));
     return v;
   }();
