@@ -12,6 +12,7 @@
 #if defined(_WIN32)
 #include <io.h>
 #else
+#include <fcntl.h>
 #include <unistd.h>
 #endif
 
@@ -70,6 +71,64 @@ void remove_on_interrupt(const char* path)
   g_interrupt_path = path;
   std::signal(SIGINT, remove_and_exit);
   std::signal(SIGTERM, remove_and_exit);
+}
+
+Scratch_file::Scratch_file(const std::string& near)
+{
+#if defined(_WIN32)
+  (void)near;
+  throw std::runtime_error("streamed runs need a POSIX system (scratch files without a name)");
+#else
+  const std::size_t slash = near.find_last_of('/');
+  const std::string dir = slash == std::string::npos ? "." : near.substr(0, slash + 1 == 1 ? 1 : slash);
+  std::string name;
+  try {
+    name = create_unique_file(dir + "/.wavejets-scratch-");
+  } catch(const std::runtime_error& e) {
+    throw std::runtime_error("cannot create a scratch file in " + dir + " (" + e.what() + ")");
+  }
+  fd_ = ::open(name.c_str(), O_RDWR);
+  const int error = errno;
+  ::unlink(name.c_str());
+  if(fd_ < 0) throw std::runtime_error("cannot open a scratch file in " + dir + " (" + std::strerror(error) + ")");
+#endif
+}
+
+Scratch_file::~Scratch_file()
+{
+#if !defined(_WIN32)
+  if(fd_ >= 0) ::close(fd_);
+#endif
+}
+
+void Scratch_file::write(const void* data, std::size_t bytes, std::uint64_t offset)
+{
+#if !defined(_WIN32)
+  const char* p = static_cast<const char*>(data);
+  while(bytes > 0) {
+    const ssize_t n = ::pwrite(fd_, p, bytes, off_t(offset));
+    if(n < 0 && errno == EINTR) continue;
+    if(n <= 0) throw std::runtime_error(std::string("cannot write a scratch file (") + (n < 0 ? std::strerror(errno) : "no space") + ")");
+    p += n; bytes -= std::size_t(n); offset += std::uint64_t(n);
+  }
+#else
+  (void)data; (void)bytes; (void)offset;
+#endif
+}
+
+void Scratch_file::read(void* data, std::size_t bytes, std::uint64_t offset) const
+{
+#if !defined(_WIN32)
+  char* p = static_cast<char*>(data);
+  while(bytes > 0) {
+    const ssize_t n = ::pread(fd_, p, bytes, off_t(offset));
+    if(n < 0 && errno == EINTR) continue;
+    if(n <= 0) throw std::runtime_error(std::string("cannot read a scratch file (") + (n < 0 ? std::strerror(errno) : "too short") + ")");
+    p += n; bytes -= std::size_t(n); offset += std::uint64_t(n);
+  }
+#else
+  (void)data; (void)bytes; (void)offset;
+#endif
 }
 
 } // namespace wavejets_demo

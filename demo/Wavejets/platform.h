@@ -4,6 +4,8 @@
 #ifndef WAVEJETS_DEMO_PLATFORM_H
 #define WAVEJETS_DEMO_PLATFORM_H
 
+#include <cstddef>
+#include <cstdint>
 #include <string>
 
 namespace wavejets_demo {
@@ -19,6 +21,23 @@ std::string create_unique_file(const std::string& prefix);
 /// On SIGINT and SIGTERM: removes the file named in `path` (if not empty), prints that nothing was
 /// written, and exits with 128 + the signal number. `path` must stay valid; it is read by the handler.
 void remove_on_interrupt(const char* path);
+
+/// A scratch file of a streamed run, in the folder of `near` (the output: same disk), unlinked as
+/// soon as it is created: it has no name, and the system frees it when the process exits, however
+/// (an error, an interrupt, a kill). Reads and writes at byte offsets; errors (a full disk) throw
+/// std::runtime_error with the reason.
+class Scratch_file
+{
+public:
+  explicit Scratch_file(const std::string& near);
+  ~Scratch_file();
+  Scratch_file(const Scratch_file&) = delete;
+  Scratch_file& operator=(const Scratch_file&) = delete;
+  void write(const void* data, std::size_t bytes, std::uint64_t offset);
+  void read(void* data, std::size_t bytes, std::uint64_t offset) const;
+private:
+  int fd_ = -1;
+};
 
 } // namespace wavejets_demo
 

@@ -217,6 +217,19 @@ Output_format output_format(const std::string& path)
   return e == "off" ? Output_format::OFF : e == "obj" ? Output_format::OBJ : Output_format::PLY;
 }
 
+std::string ply_text(const Point_set& points, bool ascii, const std::string& comment)
+{
+  std::ostringstream ply;
+  if(ascii) { CGAL::IO::set_ascii_mode(ply); ply.precision(17); }
+  else CGAL::IO::set_binary_mode(ply);
+  std::ostringstream cgal_messages;
+  std::streambuf* saved = std::cerr.rdbuf(cgal_messages.rdbuf());
+  const bool ok = CGAL::IO::write_PLY(ply, points, comment);
+  std::cerr.rdbuf(saved);
+  if(!ok) throw File_error("CGAL could not write a PLY (" + cgal_messages.str().substr(0, cgal_messages.str().find('\n')) + ")");
+  return ply.str();
+}
+
 void write_output(const Point_set& points, const Faces& faces, const std::string& path, bool ascii,
                   const std::string& comment)
 {
@@ -227,14 +240,10 @@ void write_output(const Point_set& points, const Faces& faces, const std::string
     const Output_format format = output_format(path);
     bool ok = true;
     if(format == Output_format::PLY) {
-      std::ostringstream ply;
-      if(ascii) { CGAL::IO::set_ascii_mode(ply); ply.precision(17); }
-      else CGAL::IO::set_binary_mode(ply);
-      std::ostringstream cgal_messages;
-      std::streambuf* saved = std::cerr.rdbuf(cgal_messages.rdbuf());
-      ok = CGAL::IO::write_PLY(ply, points, comment);
-      std::cerr.rdbuf(saved);
-      std::string text = ply.str();
+      std::string text;
+      try {
+        text = ply_text(points, ascii, comment);
+      } catch(const File_error&) { ok = false; }
       if(ok && !faces.empty()) append_ply_faces(text, faces, ascii);
       os.write(text.data(), std::streamsize(text.size()));
     } else

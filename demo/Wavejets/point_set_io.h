@@ -48,6 +48,10 @@ Input read_input(const std::string& path);
 enum class Output_format { PLY, OFF, OBJ };
 Output_format output_format(const std::string& path);
 
+/// The PLY file of `points` with every property, as CGAL writes it: binary little-endian (doubles)
+/// unless `ascii` (17 significant digits). A vertex's bytes depend on that vertex only.
+std::string ply_text(const Point_set& points, bool ascii, const std::string& comment);
+
 /// Writes `points` (with every property, in PLY) and `faces` to `path`, through a temporary file
 /// renamed at the end: on error, `path` is left untouched. PLY is binary little-endian (doubles)
 /// unless `ascii` (17 significant digits). Throws `File_error`.

@@ -20,8 +20,10 @@
 #include <tbb/info.h>
 #endif
 
+#include "fit_command.h"
 #include "platform.h"
 #include "point_set_io.h"
+#include "streaming.h"
 #include "render.h"
 
 #include <algorithm>
@@ -59,7 +61,8 @@ using wavejets_demo::lower_extension;
 using wavejets_demo::output_format;
 using wavejets_demo::read_input;
 using wavejets_demo::write_output;
-typedef CGAL::Parallel_if_available_tag Concurrency_tag;
+using wavejets_demo::report_text;
+using wavejets_demo::Concurrency_tag;
 namespace WP = CGAL::Wavejets::parameters;
 using Clock = std::chrono::steady_clock;
 
@@ -83,8 +86,12 @@ std::string format(double v, int precision = 4)
 
 // ------------------------------------------------------------------------------------------------
 // Commands and flags. The help text is generated from this table.
-enum Command_bit { NORMALS = 1, CURVATURE = 2, POSITIONS = 4, NORMAL_FILTER = 8, RENDER = 16 };
-const unsigned FITS = NORMALS | CURVATURE | POSITIONS | NORMAL_FILTER;
+using wavejets_demo::NORMALS;
+using wavejets_demo::CURVATURE;
+using wavejets_demo::POSITIONS;
+using wavejets_demo::NORMAL_FILTER;
+using wavejets_demo::RENDER;
+using wavejets_demo::FITS;
 
 struct Command_info { const char* name; unsigned bit; const char* synopsis; const char* summary; };
 const Command_info commands[] = {
@@ -107,6 +114,9 @@ const Flag_info flags[] = {
   {"--along-input-normals", "", POSITIONS, "move each point along its input normal instead of its Wavejet normal (for noisy inputs: first enhance-normals --gain 0, then this on its output)"},
   {"--consistent-normals", "", POSITIONS | NORMAL_FILTER, "leave out the neighbors whose normal points more than 90 degrees away from the point's (the other side of a thin part, e.g. ears); the default for a mesh"},
   {"--all-neighbors", "", POSITIONS | NORMAL_FILTER, "keep every neighbor, whatever its normal (the default for a point set)"},
+  {"--orient-toward", "X,Y,Z", FITS, "a point set without normals: orient the estimated normals toward this viewpoint (a scan's scanner position; on a closed object seen from one point the far side points inward), instead of by a minimum spanning tree; needed to stream such a point set"},
+  {"--max-memory", "SIZE", FITS, "stream a point set larger than memory (PLY or XYZ): process it in spatial tiles sized for about SIZE of memory (e.g. 2G, 500M); the output is the same, byte for byte"},
+  {"--tile-size", "N", FITS, "stream in tiles of at most N points (instead of --max-memory)"},
   {"--threads", "N", FITS | RENDER, "worker threads (default: all cores; 1: sequential, same results)"},
   {"--ascii", "", FITS, "write ASCII PLY (default: binary little-endian PLY, doubles)"},
   {"--width", "W", RENDER, "image width in pixels, all panels together (default 800 per panel)"},
@@ -212,7 +222,10 @@ struct Options
   double max_displacement = 0.;          // infinity: no clamp
   int threads = 0;
   bool ascii = false, quiet = false, compare = false, along_input_normals = false;
-  std::optional<bool> consistent_normals;  // not given: on for a mesh (normals from its faces), off for a point set
+  std::optional<bool> consistent_normals;
+  std::optional<std::array<double, 3> > viewpoint;   // --orient-toward
+  double max_memory = 0.;                  // bytes, 0: not given
+  std::size_t tile_size = 0;               // 0: not given (no streaming unless --max-memory)  // not given: on for a mesh (normals from its faces), off for a point set
   int width = 0, height = 800;
   wavejets_demo::Vec3 view = {{0., 0., 1.}}, up = {{0., 1., 0.}};
   double splat = 1.2;
@@ -250,6 +263,23 @@ std::vector<double> parse_list(const std::string& flag, const std::string& text)
     start = comma + 1;
   }
   return values;
+}
+
+// A memory size: bytes, or a number followed by K, M, G or T (powers of 1024; a trailing B is allowed).
+double parse_size(const std::string& flag, const std::string& text)
+{
+  std::string number = text, unit;
+  while(!number.empty() && std::isalpha(static_cast<unsigned char>(number.back()))) {
+    unit.insert(unit.begin(), char(std::toupper(static_cast<unsigned char>(number.back()))));
+    number.pop_back();
+  }
+  if(unit.size() == 2 && unit[1] == 'B') unit.pop_back();
+  const double scale = unit.empty() || unit == "B" ? 1. : unit == "K" ? 1024. : unit == "M" ? 1024. * 1024.
+                     : unit == "G" ? 1024. * 1024. * 1024. : unit == "T" ? 1024. * 1024. * 1024. * 1024. : 0.;
+  if(scale == 0.) throw Usage_error(flag + " expects a size such as 2G, 500M or 4000000000, got '" + text + "'");
+  const double v = parse_number(flag, number) * scale;
+  if(!(v > 0)) throw Usage_error(flag + " must be > 0");
+  return v;
 }
 
 wavejets_demo::Vec3 parse_vector(const std::string& flag, const std::string& text)
@@ -329,6 +359,13 @@ Options parse_command_line(int argc, char** argv)
         if(o.max_displacement <= 0) throw Usage_error("--max-displacement must be > 0 (or none)");
       }
     }
+    else if(a == "--orient-toward") {
+      const std::vector<double> v = parse_list(a, value);
+      if(v.size() != 3) throw Usage_error(a + " expects X,Y,Z, got '" + value + "'");
+      o.viewpoint = std::array<double, 3>{{v[0], v[1], v[2]}};
+    }
+    else if(a == "--max-memory") o.max_memory = parse_size(a, value);
+    else if(a == "--tile-size") o.tile_size = std::size_t(parse_integer(a, value, 1, 2000000000L));
     else if(a == "--threads") o.threads = int(parse_integer(a, value, 1, 4096));
     else if(a == "--ascii") o.ascii = true;
     else if(a == "--along-input-normals") o.along_input_normals = true;
@@ -355,6 +392,7 @@ Options parse_command_line(int argc, char** argv)
   if(bit != RENDER && out_ext != "ply" && out_ext != "off" && out_ext != "obj")
     throw Usage_error("the output must be a .ply file (or .off / .obj for a mesh input): " + o.files.back());
   if(o.radius > 0 && o.radius_factor > 0) throw Usage_error("give --radius or --radius-factor, not both");
+  if(o.max_memory > 0 && o.tile_size > 0) throw Usage_error("give --max-memory or --tile-size, not both");
   if(o.width == 0) o.width = 800 * int(o.files.size() - 1);   // 800 per panel
   return o;
 }
@@ -445,67 +483,65 @@ Neighborhood choose_neighborhood(const Options& o, std::size_t order, const Poin
   return n;
 }
 
-// Named parameters shared by every fit: neighborhood, order, callback, maps of the point set.
-template <class Extra>
-auto fit_parameters(const Extra& extra, const Neighborhood& n, Point_set& points, const std::function<bool(double)>& cb)
-{
-  return extra.neighbor_radius(n.radius).callback(cb).point_map(points.point_map()).normal_map(points.normal_map());
-}
-
-// Writable bool property map storing into a uchar property (PLY has no bool).
-// The functions' fitted_map: writes the "fitted" property, or nothing when it has none (one call
-// of a function serves both cases).
-struct Fitted_map
-{
-  typedef Point_set::Index key_type;
-  typedef bool value_type;
-  typedef bool reference;
-  typedef boost::writable_property_map_tag category;
-  std::optional<Point_set::Property_map<unsigned char> > map;
-  friend void put(const Fitted_map& m, key_type k, bool v) { if(m.map) (*m.map)[k] = v ? 1 : 0; }
-};
-
 struct Run_log
 {
   std::vector<std::string> lines;   // joined into the summary paragraph
   double fit_seconds = 0.;
 };
 
-// Estimates normals where the input has none, then orients them by a minimum spanning tree.
-// mst_orient_normals reorders its range, so it runs on a copy that remembers the indices.
-void ensure_oriented_normals(Point_set& points, const Neighborhood& n, std::size_t order, const Fitted_map& fitted,
-                             Progress& progress, Run_log& log)
+std::string format_point(const std::array<double, 3>& p)
 {
-  if(points.has_normal_map()) return;
-  points.add_normal_map(Vector(0, 0, 0));
-  const Clock::time_point t0 = Clock::now();
-  const CGAL::Wavejets::Processing_report r = CGAL::wavejet_estimate_normals<Concurrency_tag>(points, n.k,
-    fit_parameters(WP::order(order).fitted_map(fitted), n, points, progress.stage("estimating normals")));
-  progress.done();
-  typedef std::tuple<Point, Vector, std::size_t> Item;
-  std::vector<Item> items;
-  items.reserve(points.size());
-  std::size_t i = 0;
-  for(Point_set::Index idx : points) items.emplace_back(points.point(idx), points.normal(idx), i++);
-  const auto first_unoriented = CGAL::mst_orient_normals(items, 18,
-    CGAL::parameters::point_map(CGAL::Nth_of_tuple_property_map<0, Item>())
-      .normal_map(CGAL::Nth_of_tuple_property_map<1, Item>()));
-  const std::size_t unoriented = std::size_t(items.end() - first_unoriented);
-  std::vector<Point_set::Index> keys(points.begin(), points.end());
-  for(const Item& it : items) points.normal(keys[std::get<2>(it)]) = std::get<1>(it);
-  log.fit_seconds += seconds_since(t0);
-  log.lines.push_back("The input has no normals: estimated them (order " + std::to_string(order) + "; " +
-                      std::to_string(r.number_of_unfitted_points) + " not fitted) and oriented them by a minimum "
-                      "spanning tree (18 neighbors; " + std::to_string(unoriented) + " could not be oriented).");
+  return "(" + format(p[0]) + ", " + format(p[1]) + ", " + format(p[2]) + ")";
 }
 
-std::string report_text(const CGAL::Wavejets::Processing_report& r)
+// The summary of the estimation of the normals of a point set that has none.
+std::string bare_normals_text(std::size_t order, const CGAL::Wavejets::Processing_report& r, const std::string& orientation)
 {
-  std::string s = std::to_string(r.number_of_fitted_points) + " points fitted, " +
-                  std::to_string(r.number_of_unfitted_points) + " not fitted (left unchanged), " +
-                  std::to_string(r.number_of_reduced_order_points) + " at reduced order";
-  if(r.moves_points) s += ", " + std::to_string(r.number_of_clamped_points) + " displacements clamped";
-  return s;
+  return "The input has no normals: estimated them (order " + std::to_string(order) + "; " +
+         std::to_string(r.number_of_unfitted_points) + " not fitted) and " + orientation + ".";
+}
+
+// The summary of the normals of enhance-positions' result.
+std::string result_normals_text(const CGAL::Wavejets::Processing_report& r)
+{
+  return "normals re-estimated on the moved points (" + std::to_string(r.number_of_unfitted_points) + " not fitted)";
+}
+
+const char* command_stage_label(unsigned bit)
+{
+  return bit == NORMALS ? "normals" : bit == CURVATURE ? "curvature" : bit == POSITIONS ? "enhancing positions" : "enhancing normals";
+}
+
+// Estimates the normals of a point set that has none (its normal map is zero): oriented toward
+// --orient-toward's viewpoint, else by a minimum spanning tree (mst_orient_normals reorders its
+// range, so it runs on a copy that remembers the indices). Writes `fitted` when it has a map.
+void estimate_oriented_normals(Point_set& points, const wavejets_demo::Fit_settings& s, std::size_t order,
+                               const wavejets_demo::Uchar_bool_map& fitted, Progress& progress, Run_log& log)
+{
+  const Clock::time_point t0 = Clock::now();
+  const CGAL::Wavejets::Processing_report r = wavejets_demo::estimate_normals_of_bare_points(points, s, order, fitted,
+    progress.stage("estimating normals"), wavejets_demo::In_core{});
+  progress.done();
+  std::string orientation;
+  if(s.viewpoint)
+    orientation = "oriented them toward the viewpoint " + format_point(*s.viewpoint);
+  else {
+    typedef std::tuple<Point, Vector, std::size_t> Item;
+    std::vector<Item> items;
+    items.reserve(points.size());
+    std::size_t i = 0;
+    for(Point_set::Index idx : points) items.emplace_back(points.point(idx), points.normal(idx), i++);
+    const auto first_unoriented = CGAL::mst_orient_normals(items, 18,
+      CGAL::parameters::point_map(CGAL::Nth_of_tuple_property_map<0, Item>())
+        .normal_map(CGAL::Nth_of_tuple_property_map<1, Item>()));
+    const std::size_t unoriented = std::size_t(items.end() - first_unoriented);
+    std::vector<Point_set::Index> keys(points.begin(), points.end());
+    for(const Item& it : items) points.normal(keys[std::get<2>(it)]) = std::get<1>(it);
+    orientation = "oriented them by a minimum spanning tree (18 neighbors; " + std::to_string(unoriented) +
+                  " could not be oriented)";
+  }
+  log.fit_seconds += seconds_since(t0);
+  log.lines.push_back(bare_normals_text(order, r, orientation));
 }
 
 std::string percentiles(const Point_set& points, Point_set::Property_map<double> m,
@@ -517,24 +553,6 @@ std::string percentiles(const Point_set& points, Point_set::Property_map<double>
   std::sort(v.begin(), v.end());
   auto at = [&](double q) { return format(v[std::size_t(q * double(v.size() - 1))], 3); };
   return at(0.05) + " / " + at(0.5) + " / " + at(0.95);
-}
-
-// Removes a property of our output names that the input may carry with another type.
-void drop_property(Point_set& points, const std::string& name)
-{
-  bool found;
-  Point_set::Property_map<float> f;
-  std::tie(f, found) = CGAL::Wavejets::internal::find_property_map<float>(points, name);
-  if(found) points.remove_property_map(f);
-  Point_set::Property_map<int> i;
-  std::tie(i, found) = CGAL::Wavejets::internal::find_property_map<int>(points, name);
-  if(found) points.remove_property_map(i);
-}
-
-Point_set::Property_map<double> double_property(Point_set& points, const std::string& name)
-{
-  drop_property(points, name);
-  return points.add_property_map<double>(name, 0.).first;
 }
 
 // Sets the normals of a mesh's vertices to the area-weighted normals of their faces (adds the normal
@@ -569,8 +587,105 @@ CGAL::Wavejets::Point_set_function library_function(unsigned command_bit)
        : command_bit == POSITIONS ? F::ENHANCE_POSITIONS : F::ENHANCE_NORMALS;
 }
 
+std::string output_comment(const Options& o) { return std::string("wavejets ") + o.command->name + " of " + o.files[0]; }
+
+std::string threads_text()
+{
+#ifdef CGAL_LINKED_WITH_TBB
+  return "threads: " + std::to_string(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)) + ".";
+#else
+  return "threads: 1 (built without TBB).";
+#endif
+}
+
+// What the command line asks of the fitting functions.
+wavejets_demo::Fit_settings fit_settings(const Options& o, std::size_t order, const Neighborhood& n, bool consistent_normals)
+{
+  wavejets_demo::Fit_settings s;
+  s.command = o.command->bit;
+  s.k = n.k;
+  s.radius = n.radius;
+  s.order = order;
+  s.gain = o.gain;
+  s.evaluation_radius = o.evaluation_radius;
+  s.has_clamp = o.has_clamp;
+  s.max_displacement = o.max_displacement;
+  s.along_input_normals = o.along_input_normals;
+  s.consistent_normals = consistent_normals;
+  s.viewpoint = o.viewpoint;
+  return s;
+}
+
+// The summary of the command's own run (r), after its settings.
+std::string command_text(const wavejets_demo::Fit_settings& s, const CGAL::Wavejets::Processing_report& r)
+{
+  const std::string order = std::to_string(s.order);
+  const std::string evaluation = s.evaluation_radius > 0 ? format(s.evaluation_radius) : std::string("Rf");
+  const std::string consistent = s.consistent_normals ? ", neighbors with consistent normals" : "";
+  switch(s.command) {
+    case NORMALS:
+      return "Normals (order " + order + ", oriented like the input normals): " + report_text(r);
+    case CURVATURE:
+      return "Curvature (order " + order + "): " + report_text(r);
+    case POSITIONS:
+      return "Position enhancement (order " + order + ", gain " + format(s.gain.real()) + ", evaluation radius " + evaluation +
+             ", clamp " + (!s.has_clamp ? std::string("Rf/2") : std::isinf(s.max_displacement) ? std::string("none") : format(s.max_displacement)) +
+             (s.along_input_normals ? std::string(", along the input normals") : std::string()) + consistent + "): " + report_text(r);
+    default: {
+      const std::complex<double> g = s.gain;
+      const std::string gain = g.imag() == 0 ? format(g.real()) : format(g.real()) + (g.imag() < 0 ? "" : "+") + format(g.imag()) + "i";
+      return "Normal enhancement (order " + order + ", gain " + gain + ", evaluation radius " + evaluation + consistent + "): " +
+             report_text(r);
+    }
+  }
+}
+
+// A streamed run (--max-memory, --tile-size): a point set read in passes and fitted tile by tile;
+// the same output file as in memory.
+int run_streamed_command(const Options& o, Progress& progress)
+{
+  const Clock::time_point t0 = Clock::now();
+  const std::string& in_path = o.files[0];
+  const std::string& out_path = o.files[1];
+  if(output_format(out_path) != Output_format::PLY) throw Usage_error("a streamed run writes a .ply file, not " + out_path);
+  if(o.radius_factor > 0)
+    throw Usage_error("--radius-factor needs the average spacing of the whole point set: give --k or --radius with " +
+                      std::string(o.max_memory > 0 ? "--max-memory" : "--tile-size"));
+  const unsigned bit = o.command->bit;
+  const std::size_t order = o.order ? o.order : CGAL::Wavejets::function_defaults(library_function(bit)).order;
+  const Neighborhood n = choose_neighborhood(o, order, Point_set(), in_path);
+  const wavejets_demo::Fit_settings s = fit_settings(o, order, n, o.consistent_normals.value_or(false));
+  wavejets_demo::Streaming_settings settings;
+  settings.tile_size = o.tile_size > 0 ? o.tile_size : wavejets_demo::tile_size_for_memory(o.max_memory);
+  settings.ascii = o.ascii;
+  settings.comment = output_comment(o);
+  const wavejets_demo::Streamed_run run = wavejets_demo::run_streamed(in_path, out_path, s, settings, progress.stage("streaming"));
+  progress.done();
+  if(!o.quiet) {
+    std::ostringstream t;
+    t << std::fixed << std::setprecision(2) << o.command->name << ": streamed a point set of " << run.points << " points from "
+      << in_path << " (" << run.format << ", " << (run.had_normals ? "with" : "without") << " normals) in tiles of at most "
+      << settings.tile_size << " points (" << run.tiles << " tiles; " << run.rerun_points
+      << " points fitted again with a larger halo); neighborhoods: " << n.description << "; " << threads_text() << " ";
+    if(run.bare_normals) t << bare_normals_text(bit == NORMALS ? order : 2, *run.bare_normals, "oriented them toward the viewpoint " + format_point(*s.viewpoint)) << " ";
+    if(run.command) {
+      t << command_text(s, *run.command);
+      if(run.result_normals) t << "; " << result_normals_text(*run.result_normals);
+      t << ". ";
+    }
+    t << "Reading and checking took " << run.scan_seconds << " s, binning " << run.binning_seconds << " s, fitting "
+      << run.fit_seconds << " s, writing " << run.write_seconds << " s. Wrote " << out_path << " ("
+      << (o.ascii ? "ASCII" : "binary little-endian") << " PLY, " << run.points << " points in input order, properties: x y z";
+    for(const std::string& p : run.columns) t << " " << p;
+    t << ", the same bytes as in memory); total " << seconds_since(t0) << " s.";
+    std::cout << t.str() << std::endl;
+  }
+  return EXIT_SUCCESS;
+}
+
 int run_fit_command_on_input(const Options& o, Progress& progress)
 {
+  if(o.max_memory > 0 || o.tile_size > 0) return run_streamed_command(o, progress);
   const Clock::time_point t0 = Clock::now();
   const std::string& in_path = o.files[0];
   const std::string& out_path = o.files[1];
@@ -585,110 +700,47 @@ int run_fit_command_on_input(const Options& o, Progress& progress)
   // A mesh without normals: its faces give oriented vertex normals (no estimation, no MST).
   if(in.is_mesh() && !in.had_normals && set_face_normals(points, in.faces, nullptr))
     log.lines.push_back("The input has no normals: used the area-weighted normals of its faces.");
-  const bool have_normals = points.has_normal_map();
+  const bool bare = !points.has_normal_map();
   // A mesh's normals come from its oriented faces (or its file): neighbors on the other side of a
   // thin part (ears, fins, sheets) are left out by default; a point set's normals may be unoriented.
-  const bool consistent_normals = o.consistent_normals.value_or(in.is_mesh());
-
-  drop_property(points, "fitted");
-  Point_set::Property_map<unsigned char> fitted = points.add_property_map<unsigned char>("fitted", 0).first;
-  const Fitted_map fitted_map{fitted};
+  const wavejets_demo::Fit_settings s = fit_settings(o, order, n, o.consistent_normals.value_or(in.is_mesh()));
+  const wavejets_demo::Output_columns columns = wavejets_demo::add_output_columns(points, bit);
+  const wavejets_demo::In_core in_core;
 
   std::string what;
-  if(bit == NORMALS && have_normals) {
+  if(bare)   // for normals, this is the command; the others need normals first (order 2)
+    estimate_oriented_normals(points, s, bit == NORMALS ? order : 2,
+                              bit == NORMALS ? wavejets_demo::Uchar_bool_map{columns.fitted} : wavejets_demo::Uchar_bool_map{},
+                              progress, log);
+  if(bit != NORMALS || !bare) {
     const Clock::time_point t = Clock::now();
-    const CGAL::Wavejets::Processing_report r = CGAL::wavejet_estimate_normals<Concurrency_tag>(
-      points, n.k, fit_parameters(WP::order(order).orient_with_input_normals(true).fitted_map(fitted_map), n, points,
-                                  progress.stage("normals")));
+    const CGAL::Wavejets::Processing_report r =
+      wavejets_demo::run_fit_command(points, s, columns, progress.stage(command_stage_label(bit)), in_core);
     progress.done();
-    log.fit_seconds += seconds_since(t);
-    what = "Normals (order " + std::to_string(order) + ", oriented like the input normals): " + report_text(r) + ".";
-  } else if(bit == NORMALS) {
-    ensure_oriented_normals(points, n, order, fitted_map, progress, log);
-  } else {
-    ensure_oriented_normals(points, n, 2, Fitted_map{}, progress, log);
-    const Clock::time_point t = Clock::now();
+    what = command_text(s, r);
     if(bit == CURVATURE) {
-      Point_set::Property_map<double> H = double_property(points, "mean_curvature"),
-        K = double_property(points, "gaussian_curvature"), k1 = double_property(points, "k1"),
-        k2 = double_property(points, "k2"), quality = double_property(points, "quality");
-      Point_set::Property_map<Vector> d1 = points.add_property_map<Vector>("wavejets_d1", CGAL::NULL_VECTOR).first,
-                                      d2 = points.add_property_map<Vector>("wavejets_d2", CGAL::NULL_VECTOR).first;
-      const CGAL::Wavejets::Processing_report r = CGAL::wavejet_estimate_curvatures<Concurrency_tag>(
-        points, n.k,
-        fit_parameters(WP::order(order).mean_curvature_map(H).gaussian_curvature_map(K)
-                         .maximal_principal_curvature_map(k1).minimal_principal_curvature_map(k2)
-                         .maximal_principal_direction_map(d1).minimal_principal_direction_map(d2).fitted_map(fitted_map),
-                       n, points, progress.stage("curvature")));
-      progress.done();
-      const char* axes[3] = {"x", "y", "z"};
-      for(int c = 0; c < 3; ++c) {
-        Point_set::Property_map<double> a = double_property(points, std::string("k1_dir_") + axes[c]);
-        for(Point_set::Index i : points) a[i] = d1[i][c];
-      }
-      for(int c = 0; c < 3; ++c) {
-        Point_set::Property_map<double> b = double_property(points, std::string("k2_dir_") + axes[c]);
-        for(Point_set::Index i : points) b[i] = d2[i][c];
-      }
-      points.remove_property_map(d1);
-      points.remove_property_map(d2);
-      for(Point_set::Index i : points) quality[i] = H[i];
-      what = "Curvature (order " + std::to_string(order) + "): " + report_text(r) +
-             ". Over the fitted points, 5% / median / 95%: H " + percentiles(points, H, fitted) + ", K " +
-             percentiles(points, K, fitted) + ", k1 " + percentiles(points, k1, fitted) + ", k2 " +
-             percentiles(points, k2, fitted) + ".";
+      const std::vector<Point_set::Property_map<double> >& c = columns.curvature;
+      what += ". Over the fitted points, 5% / median / 95%: H " + percentiles(points, c[0], columns.fitted) + ", K " +
+              percentiles(points, c[1], columns.fitted) + ", k1 " + percentiles(points, c[2], columns.fitted) + ", k2 " +
+              percentiles(points, c[3], columns.fitted);
+    } else if(bit == POSITIONS && in.is_mesh()) {
+      // The normals of the moved mesh: from its faces (vertices without a face keep their Wavejet normal).
+      std::size_t without_face = 0;
+      set_face_normals(points, in.faces, &without_face);
+      what += "; normals of the moved mesh from its faces (" + std::to_string(without_face) +
+              " vertices without a face keep their Wavejet normal)";
     } else if(bit == POSITIONS) {
-      const double gain = o.gain.real();
-      auto enhance = [&](const auto& np) {
-        return CGAL::wavejet_enhance_positions<Concurrency_tag>(points, n.k, gain,
-                 fit_parameters(np, n, points, progress.stage("enhancing positions")));
-      };
-      const CGAL::Wavejets::Processing_report r = o.has_clamp
-        ? enhance(WP::maximum_displacement(o.max_displacement).order(order).evaluation_radius(o.evaluation_radius)
-                    .move_along_input_normals(o.along_input_normals).restrict_to_consistent_normals(consistent_normals)
-                    .write_normals(true).fitted_map(fitted_map))
-        : enhance(WP::order(order).evaluation_radius(o.evaluation_radius).move_along_input_normals(o.along_input_normals)
-                    .restrict_to_consistent_normals(consistent_normals).write_normals(true).fitted_map(fitted_map));
+      const CGAL::Wavejets::Processing_report rn = wavejets_demo::estimate_normals_of_result(points, s,
+        progress.stage("normals of the result"), in_core);
       progress.done();
-      std::string normals_of_result;
-      if(in.is_mesh()) {
-        // The normals of the moved mesh: from its faces (vertices without a face keep their Wavejet normal).
-        std::size_t without_face = 0;
-        set_face_normals(points, in.faces, &without_face);
-        normals_of_result = "normals of the moved mesh from its faces (" + std::to_string(without_face) +
-                            " vertices without a face keep their Wavejet normal)";
-      } else {
-        // The normals of the result: re-fitted on the moved points, oriented like the written ones.
-        const CGAL::Wavejets::Processing_report rn = CGAL::wavejet_estimate_normals<Concurrency_tag>(
-          points, n.k, fit_parameters(WP::order(std::size_t(2)).orient_with_input_normals(true), n, points,
-                                      progress.stage("normals of the result")));
-        progress.done();
-        normals_of_result = "normals re-estimated on the moved points (" + std::to_string(rn.number_of_unfitted_points) +
-                            " not fitted)";
-      }
-      what = "Position enhancement (order " + std::to_string(order) + ", gain " + format(gain) + ", evaluation radius " +
-             (o.evaluation_radius > 0 ? format(o.evaluation_radius) : std::string("Rf")) + ", clamp " +
-             (!o.has_clamp ? std::string("Rf/2") : std::isinf(o.max_displacement) ? std::string("none") : format(o.max_displacement)) +
-             (o.along_input_normals ? std::string(", along the input normals") : std::string()) +
-             (consistent_normals ? std::string(", neighbors with consistent normals") : std::string()) +
-             "): " + report_text(r) + "; " + normals_of_result + ".";
-    } else {
-      const CGAL::Wavejets::Processing_report r = CGAL::wavejet_enhance_normals<Concurrency_tag>(
-        points, n.k, o.gain,
-        fit_parameters(WP::order(order).evaluation_radius(o.evaluation_radius).restrict_to_consistent_normals(consistent_normals)
-                         .fitted_map(fitted_map), n, points, progress.stage("enhancing normals")));
-      progress.done();
-      const std::string g = o.gain.imag() == 0 ? format(o.gain.real()) : format(o.gain.real()) + (o.gain.imag() < 0 ? "" : "+") + format(o.gain.imag()) + "i";
-      what = "Normal enhancement (order " + std::to_string(order) + ", gain " + g + ", evaluation radius " +
-             (o.evaluation_radius > 0 ? format(o.evaluation_radius) : std::string("Rf")) +
-             (consistent_normals ? std::string(", neighbors with consistent normals") : std::string()) +
-             "): " + report_text(r) + ".";
+      what += "; " + result_normals_text(rn);
     }
+    what += ".";
     log.fit_seconds += seconds_since(t);
   }
 
   const Clock::time_point tw = Clock::now();
-  write_output(points, in.faces, out_path, o.ascii, std::string("wavejets ") + o.command->name + " of " + in_path);
+  write_output(points, in.faces, out_path, o.ascii, output_comment(o));
   const double write_seconds = seconds_since(tw);
 
   if(!o.quiet) {
@@ -700,11 +752,7 @@ int run_fit_command_on_input(const Options& o, Progress& progress)
     s << " from " << in_path << " (" << in.format << ", " << (in.had_normals ? "with" : "without") << " normals) in "
       << in.read_seconds << " s; neighborhoods: "
       << n.description << "; ";
-#ifdef CGAL_LINKED_WITH_TBB
-    s << "threads: " << tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism) << ". ";
-#else
-    s << "threads: 1 (built without TBB). ";
-#endif
+    s << threads_text() << " ";
     for(const std::string& l : log.lines) s << l << " ";
     if(!what.empty()) s << what << " ";
     s << "Fitting took " << log.fit_seconds << " s. Wrote " << out_path << " (";

@@ -26,7 +26,7 @@ expect_error() { # FILE OUT -- COMMAND ARGS...
   [ $status -ne 0 ] || fail "exit status 0 for: $*"
   [ "$(wc -l < stderr.txt)" -eq 1 ] || fail "error is not one line for: $* ($(cat stderr.txt))"
   grep -q "error" stderr.txt || fail "no error message for: $*"
-  grep -qF "$file" stderr.txt || fail "the error does not name $file"
+  grep -qF -- "$file" stderr.txt || fail "the error does not name $file"
   [ ! -e "$out" ] || fail "$out was written by: $*"
   [ -z "$(ls -A | grep -F '.tmp-')" ] || fail "temporary file left by: $*"
 }
@@ -358,6 +358,85 @@ cli_case_render_mesh() {
   run render --compare "$mesh" mp.ply "$mesh" m3.png --width 600 --height 200 | tee summary.txt || fail "compare of three failed"
   "$check" png m3.png 600 200 || fail "compare check (three)"
   grep -q "compared, left to right," summary.txt || fail "compare summary (three)"
+}
+
+# Streamed runs (--tile-size, --max-memory) write the bytes of the in-core run.
+same_as_in_core() { # NAME TILE_SIZE -- COMMAND ARGS...
+  local name=$1 tile=$2; shift 3
+  "$wj" "$@" "in_$name.ply" -q || { fail "in-core run failed: $*"; return; }
+  run "$@" "st_$name.ply" -q --tile-size "$tile" || { fail "streamed run failed: $* --tile-size $tile"; return; }
+  cmp -s "in_$name.ply" "st_$name.ply" || fail "streamed output differs from the in-core one: $* --tile-size $tile"
+}
+
+cli_case_streamed_identical() {
+  for c in normals curvature enhance-positions enhance-normals; do same_as_in_core "kitten_$c" 300 -- "$c" "$kitten"; done
+  # k larger than a tile's population; a radius; PLY in (binary and ASCII) and ASCII out.
+  same_as_in_core k100 20 -- curvature "$kitten" --k 100
+  same_as_in_core radius 50 -- enhance-positions "$kitten" --radius 0.03
+  same_as_in_core twist 50 -- enhance-normals "$kitten" --radius 0.05 --k 12 --gain 0,2
+  "$wj" normals "$kitten" k.ply -q && "$wj" normals "$kitten" k_ascii.ply -q --ascii
+  same_as_in_core ply 100 -- enhance-positions k.ply --gain 3 --max-displacement none
+  same_as_in_core ply_ascii 100 -- enhance-normals k_ascii.ply --ascii --consistent-normals
+  # --max-memory: one tile here; the summary says how the run went.
+  "$wj" curvature "$kitten" mm.ply --max-memory 1G > summary.txt || fail "--max-memory run failed"
+  cmp -s mm.ply in_kitten_curvature.ply || fail "--max-memory output differs from the in-core one"
+  grep -q "the same bytes as in memory" summary.txt || fail "no streamed summary: $(cat summary.txt)"
+}
+
+cli_case_streamed_hard_input() {
+  # The kitten with 40 points repeated 50 times each and a cluster of 5000 points (10^-3 apart)
+  # straddling the middle of the model: duplicates, and a density 1000x the rest across tiles.
+  awk 'BEGIN { srand(7) } { print; line[NR] = $0 }
+       END { for(i = 1; i <= 40; ++i) for(j = 0; j < 50; ++j) print line[i * 100];
+             for(i = 0; i < 5000; ++i) printf "%.17g %.17g %.17g 0 0 1\n", (rand() - 0.5) * 0.01, (rand() - 0.5) * 0.01, (rand() - 0.5) * 0.001 }' \
+      "$kitten" > hard.xyz
+  for c in normals curvature enhance-positions enhance-normals; do same_as_in_core "hard_$c" 300 -- "$c" hard.xyz --k 18; done
+  same_as_in_core hard_k40 16 -- enhance-positions hard.xyz --k 40
+  # Without normals: estimated and oriented toward a viewpoint, the same way in core and streamed.
+  awk '{ print $1, $2, $3 }' "$kitten" > bare.xyz
+  same_as_in_core bare_normals 100 -- normals bare.xyz --orient-toward 0,0,5
+  same_as_in_core bare_enhance 100 -- enhance-positions bare.xyz --orient-toward 0,0,5
+  "$check" points "$kitten" in_bare_normals.ply 0 fitted || fail "--orient-toward output check"
+}
+
+cli_case_streamed_errors() {
+  awk '{ print $1, $2, $3 }' "$kitten" > bare.xyz
+  expect_error bare.xyz out.ply -- normals bare.xyz out.ply --tile-size 100
+  grep -q -- "--orient-toward" stderr.txt || fail "no hint at --orient-toward: $(cat stderr.txt)"
+  expect_error "$mesh" out.ply -- normals "$mesh" out.ply --tile-size 100
+  expect_error --radius-factor out.ply -- normals "$kitten" out.ply --tile-size 100 --radius-factor 3
+  expect_error --max-memory out.ply -- normals "$kitten" out.ply --tile-size 100 --max-memory 1G
+  sed '100s/.*/nan 0 0 0 0 1/' "$kitten" > nan.xyz
+  expect_error nan.xyz out.ply -- normals nan.xyz out.ply --tile-size 100
+  "$wj" normals "$kitten" k.ply -q
+  head -c 30000 k.ply > truncated.ply
+  expect_error truncated.ply out.ply -- normals truncated.ply out.ply --tile-size 100
+  # A full disk (here a file size limit: writes fail with EFBIG) fails the run, leaves an existing
+  # OUT as it was, and no scratch file.
+  echo "previous" > kept.ply
+  (trap '' XFSZ; ulimit -f 200; "$wj" curvature "$kitten" kept.ply --tile-size 300 > stdout.txt 2> stderr.txt)
+  local status=$?
+  echo "+ (ulimit -f 200) wavejets curvature --tile-size 300 -> exit $status: $(cat stderr.txt)"
+  [ $status -eq 1 ] || fail "disk full: exit status $status"
+  [ "$(cat kept.ply)" = previous ] || fail "disk full: OUT was changed"
+  [ -z "$(ls -A | grep -e '.tmp-' -e scratch)" ] || fail "disk full: temporary files left: $(ls -A)"
+}
+
+cli_case_streamed_interrupted() {
+  # A streamed run of a few seconds (300,000 points, one thread), interrupted: no output, no
+  # temporary files, exit status 130.
+  awk 'BEGIN { srand(3); for(i = 0; i < 300000; ++i) { x = rand(); y = rand(); printf "%.9f %.9f %.9f 0 0 1\n", x, y, 0.05 * sin(9 * x) * cos(7 * y) } }' > big.xyz
+  echo "previous" > kept.ply
+  "$wj" enhance-positions big.xyz kept.ply --tile-size 20000 --threads 1 --k 40 > stdout.txt 2> stderr.txt &
+  local pid=$!
+  sleep 1.5
+  kill -INT $pid
+  wait $pid
+  local status=$?
+  echo "+ wavejets enhance-positions big.xyz kept.ply --tile-size 20000, SIGINT after 1.5 s -> exit $status: $(cat stderr.txt)"
+  [ $status -eq 130 ] || fail "interrupted run: exit status $status (did it end before the signal?)"
+  [ "$(cat kept.ply)" = previous ] || fail "interrupted run: OUT was changed"
+  [ -z "$(ls -A | grep -e '.tmp-' -e scratch)" ] || fail "interrupted run: temporary files left: $(ls -A)"
 }
 
 if [ "${1:-}" = --list ]; then

@@ -1,0 +1,70 @@
+// See fit_command.h.
+#include "fit_command.h"
+
+namespace wavejets_demo {
+
+namespace {
+
+// Removes a property of our output names that the input may carry with another type.
+void drop_property(Point_set& points, const std::string& name)
+{
+  bool found;
+  Point_set::Property_map<float> f;
+  std::tie(f, found) = CGAL::Wavejets::internal::find_property_map<float>(points, name);
+  if(found) points.remove_property_map(f);
+  Point_set::Property_map<int> i;
+  std::tie(i, found) = CGAL::Wavejets::internal::find_property_map<int>(points, name);
+  if(found) points.remove_property_map(i);
+}
+
+// A zero property named `name` of type T (one of the input's, of another type, is replaced).
+template <class T>
+Point_set::Property_map<T> zero_column(Point_set& points, const std::string& name)
+{
+  drop_property(points, name);
+  Point_set::Property_map<T> m = points.template add_property_map<T>(name, T(0)).first;
+  for(Point_set::Index i : points) m[i] = T(0);
+  return m;
+}
+
+} // namespace
+
+const std::vector<std::string>& curvature_column_names()
+{
+  static const std::vector<std::string> names = {"mean_curvature", "gaussian_curvature", "k1", "k2", "quality",
+                                                 "k1_dir_x", "k1_dir_y", "k1_dir_z", "k2_dir_x", "k2_dir_y", "k2_dir_z"};
+  return names;
+}
+
+Output_columns add_output_columns(Point_set& points, unsigned command)
+{
+  Output_columns c;
+  c.fitted = zero_column<unsigned char>(points, "fitted");
+  if(!points.has_normal_map()) points.add_normal_map(Vector(0, 0, 0));
+  if(command == CURVATURE)
+    for(const std::string& name : curvature_column_names()) c.curvature.push_back(zero_column<double>(points, name));
+  return c;
+}
+
+std::string report_text(const CGAL::Wavejets::Processing_report& r)
+{
+  std::string s = std::to_string(r.number_of_fitted_points) + " points fitted, " +
+                  std::to_string(r.number_of_unfitted_points) + " not fitted (left unchanged), " +
+                  std::to_string(r.number_of_reduced_order_points) + " at reduced order";
+  if(r.moves_points) s += ", " + std::to_string(r.number_of_clamped_points) + " displacements clamped";
+  return s;
+}
+
+void add_report(CGAL::Wavejets::Processing_report& a, const CGAL::Wavejets::Processing_report& b)
+{
+  a.number_of_fitted_points += b.number_of_fitted_points;
+  a.number_of_unfitted_points += b.number_of_unfitted_points;
+  a.number_of_non_finite_points += b.number_of_non_finite_points;
+  a.number_of_reduced_order_points += b.number_of_reduced_order_points;
+  a.number_of_clamped_points += b.number_of_clamped_points;
+  a.number_of_outside_points += b.number_of_outside_points;
+  a.moves_points = a.moves_points || b.moves_points;
+  a.interrupted = a.interrupted || b.interrupted;
+}
+
+} // namespace wavejets_demo

@@ -1,0 +1,801 @@
+// See streaming.h. A streamed run, in passes over files, never holding the whole point set:
+//  1. scan: IN is read in chunks (CGAL's own reader on each chunk, so that every value is the
+//     in-core one), checked as in core (NaN, coinciding points, normals), and copied as records
+//     (index, position, normal, fitted, curvature) into a scratch file;
+//  2. per pass of the library (normals of a point set without normals; the command; for
+//     enhance-positions the normals of the moved points): a histogram of the records on a grid,
+//     tiles as median splits of the grid's cells, the records binned by cell (a tile's cells
+//     contiguous), then per tile: the points within its halo are read back in global order and
+//     the library function runs on them with Wavejets::parameters::tile(); the points whose
+//     neighborhood reaches past the halo are run again with a halo twice as large. Every pass
+//     writes one record per point, tile after tile, each tile's records in index order;
+//  3. write: IN is read again in chunks, each chunk gets its records (a merge of the tiles' sorted
+//     runs) and is written by CGAL's PLY writer; the first header (its vertex count set to the
+//     whole count) and the bodies make the file the in-core run writes, byte for byte.
+#include "streaming.h"
+#include "platform.h"
+
+#include <CGAL/Point_set_3/IO.h>
+#include <CGAL/IO/PLY.h>
+
+#ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/parallel_sort.h>
+#endif
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <sstream>
+
+namespace wavejets_demo {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// ------------------------------------------------------------------------------------------------
+// The input, chunk by chunk.
+class Input_chunks
+{
+public:
+  explicit Input_chunks(const std::string& path) : path_(path), is_(path, std::ios::binary)
+  {
+    const std::string ext = lower_extension(path);
+    if(ext != "ply" && ext != "xyz" && ext != "pwn")
+      throw File_error(path + ": a streamed run reads .ply, .xyz or .pwn point sets (give no --max-memory / --tile-size "
+                       "to process a ." + ext + " file in memory)");
+    if(!is_) throw File_error(path + ": cannot open (" + std::strerror(errno) + ")");
+    if(is_.peek() == std::ifstream::traits_type::eof()) throw File_error(path + ": the file is empty");
+    if(ext == "ply") read_ply_header();
+    else format_ = "XYZ";
+  }
+  const std::string& format() const { return format_; }
+
+  // The next chunk of at most `lines` points (XYZ: lines) into `chunk`, emptied first; false at the end.
+  bool next(Point_set& chunk, std::size_t lines)
+  {
+    chunk.clear();
+    std::string text;
+    std::size_t count = 0;
+    if(binary_) {
+      count = std::size_t(std::min<std::uint64_t>(lines, remaining_));
+      std::string body(count * record_bytes_, '\0');
+      is_.read(&body[0], std::streamsize(body.size()));
+      const std::size_t got = std::size_t(is_.gcount()) / record_bytes_;
+      if(got < count) truncated(got);
+      text = header_with_count(count) + body;
+    } else {
+      std::string line, body;
+      const bool ply = format_ == "PLY";
+      while(count < (ply ? std::min<std::uint64_t>(lines, remaining_) : lines) && std::getline(is_, line)) {
+        body += line;
+        body += '\n';
+        ++count;
+      }
+      if(ply && count < std::min<std::uint64_t>(lines, remaining_)) truncated(count);
+      // Line 1 of an XYZ file may be a point count: a later chunk starts with a comment line, so
+      // that a number alone there is the error it is in core.
+      text = ply ? header_with_count(count) : (first_ ? "" : "#\n") + body;
+      if(ply) text += body;
+    }
+    first_ = false;
+    if(count == 0) return false;
+    if(format_ == "PLY") remaining_ -= count;
+    std::istringstream is(text);
+    std::ostringstream cgal_messages;
+    std::streambuf* saved = std::cerr.rdbuf(cgal_messages.rdbuf());
+    bool ok = false;
+    try {
+      ok = format_ == "PLY" ? CGAL::IO::read_PLY(is, chunk) : CGAL::IO::read_XYZ(is, chunk);
+    } catch(const std::exception& e) { cgal_messages << e.what() << "\n"; }
+    std::cerr.rdbuf(saved);
+    if(!ok || (format_ == "PLY" && chunk.size() != count)) {
+      std::string why = cgal_messages.str();
+      why = why.substr(0, why.find('\n'));
+      if(why.compare(0, 7, "Error: ") == 0) why = why.substr(7);
+      throw File_error(path_ + ": not a valid " + format_ + " file (" + (why.empty() ? "malformed or truncated" : why) + ")");
+    }
+    return true;
+  }
+
+private:
+  void read_ply_header()
+  {
+    format_ = "PLY";
+    std::string line, header;
+    bool vertex_seen = false, ended = false;
+    for(int i = 0; i < 100000 && std::getline(is_, line); ++i) {
+      const std::string raw = line + "\n";
+      if(!line.empty() && line.back() == '\r') line.pop_back();
+      std::istringstream s(line);
+      std::string word, a, b;
+      s >> word;
+      if(word == "format") {
+        s >> a;
+        binary_ = a != "ascii";
+      } else if(word == "element") {
+        s >> a >> b;
+        if(vertex_seen || a != "vertex")
+          throw File_error(path_ + ": a streamed run reads PLY point sets (one vertex element); this file has a '" + a +
+                           "' element (give no --max-memory / --tile-size to process a mesh in memory)");
+        vertex_seen = true;
+        char* end = nullptr;
+        remaining_ = std::strtoull(b.c_str(), &end, 10);
+        before_count_ = header;
+        header.clear();
+        continue;
+      } else if(word == "property" && vertex_seen) {
+        s >> a;
+        if(a == "list") throw File_error(path_ + ": a streamed run reads PLY vertices without list properties");
+        const std::size_t bytes = a == "char" || a == "uchar" || a == "int8" || a == "uint8" ? 1
+                                : a == "short" || a == "ushort" || a == "int16" || a == "uint16" ? 2
+                                : a == "int" || a == "uint" || a == "float" || a == "int32" || a == "uint32" || a == "float32" ? 4
+                                : a == "double" || a == "float64" ? 8 : 0;
+        if(bytes == 0) throw File_error(path_ + ": not a valid PLY file (unknown property type '" + a + "')");
+        record_bytes_ += bytes;
+      }
+      header += raw;
+      if(word == "end_header") { ended = true; break; }
+    }
+    if(!ended || !vertex_seen || record_bytes_ == 0)
+      throw File_error(path_ + ": not a valid PLY file (no end_header, or no vertex element with properties)");
+    after_count_ = header;
+    announced_ = remaining_;
+  }
+  std::string header_with_count(std::size_t count) const
+  {
+    return before_count_ + "element vertex " + std::to_string(count) + "\n" + after_count_;
+  }
+  [[noreturn]] void truncated(std::size_t got) const
+  {
+    throw File_error(path_ + ": truncated PLY (the header announces " + std::to_string(announced_) + " vertices, " +
+                     std::to_string(announced_ - remaining_ + got) + " could be read)");
+  }
+
+  std::string path_, format_, before_count_, after_count_;
+  std::ifstream is_;
+  bool binary_ = false, first_ = true;
+  std::size_t record_bytes_ = 0;
+  std::uint64_t remaining_ = 0, announced_ = 0;
+};
+
+// ------------------------------------------------------------------------------------------------
+// One point between passes: its index in the input, position, normal and fitted flag (64 bytes).
+struct Record
+{
+  std::uint64_t index;
+  double position[3], normal[3];
+  std::uint64_t fitted;
+};
+// A point after the command's pass: with the curvature command, its curvature columns too.
+struct Result
+{
+  Record record;
+  double curvature[11];
+};
+// Bytes of a pass's output records in the scratch files: without the curvature unless the command computes it.
+std::size_t result_bytes(unsigned command) { return command == CURVATURE ? sizeof(Result) : sizeof(Record); }
+
+// Results (their first `bytes`: records) read from, or written to, a scratch file sequentially, through a buffer.
+class Record_stream
+{
+public:
+  Record_stream(Scratch_file& file, std::size_t bytes, std::uint64_t first, std::uint64_t end, std::size_t buffered = 1 << 14)
+    : file_(file), bytes_(bytes), next_(first), end_(end), buffer_(buffered * bytes) {}
+  bool done() const { return next_ == end_ && at_ == size_; }
+  const Result& peek() { fill(); return current_; }
+  const Result& take() { fill(); loaded_ = false; return current_; }
+  void put(const void* r)
+  {
+    std::memcpy(&buffer_[size_], r, bytes_);
+    size_ += bytes_;
+    if(size_ == buffer_.size()) flush();
+  }
+  void flush()
+  {
+    if(size_) file_.write(buffer_.data(), size_, next_ * bytes_);
+    next_ += size_ / bytes_;
+    size_ = 0;
+  }
+  std::uint64_t written() const { return next_ + size_ / bytes_; }
+private:
+  void fill()
+  {
+    if(loaded_) return;
+    if(at_ == size_) {
+      const std::size_t n = std::size_t(std::min<std::uint64_t>(buffer_.size() / bytes_, end_ - next_));
+      file_.read(buffer_.data(), n * bytes_, next_ * bytes_);
+      next_ += n; at_ = 0; size_ = n * bytes_;
+    }
+    std::memcpy(&current_, &buffer_[at_], bytes_);
+    at_ += bytes_;
+    loaded_ = true;
+  }
+  Scratch_file& file_;
+  std::size_t bytes_;
+  std::uint64_t next_, end_;
+  std::vector<char> buffer_;
+  std::size_t at_ = 0, size_ = 0;
+  Result current_ = Result();
+  bool loaded_ = false;
+};
+
+// The records of a pass, in a scratch file: runs, each in index order (one run per tile).
+struct Record_file
+{
+  std::unique_ptr<Scratch_file> file;
+  std::size_t bytes = sizeof(Record);   // of each record
+  std::uint64_t count = 0;
+  std::vector<std::pair<std::uint64_t, std::uint64_t> > runs;   // [first, end) of each run
+  CGAL::Bbox_3 bounds;
+};
+
+// ------------------------------------------------------------------------------------------------
+// Tiles: a grid of cubic cells over the points' bounding box, and boxes of cells cut at median
+// counts until a box holds at most tile_size points (or is one cell).
+struct Grid
+{
+  double lo[3] = {0, 0, 0}, cell = 1.;
+  long n[3] = {1, 1, 1};
+  long cell_index(const double p[3], int axis) const
+  {
+    const double c = std::floor((p[axis] - lo[axis]) / cell);
+    return c < 0 ? 0 : c >= double(n[axis]) ? n[axis] - 1 : long(c);
+  }
+  std::size_t cell_of(const double p[3]) const
+  {
+    return std::size_t((cell_index(p, 0) * n[1] + cell_index(p, 1)) * n[2] + cell_index(p, 2));
+  }
+  std::size_t size() const { return std::size_t(n[0] * n[1] * n[2]); }
+};
+
+struct Cell_box { long lo[3], hi[3]; std::uint64_t count; };   // cells [lo, hi) per axis
+
+Grid make_grid(const CGAL::Bbox_3& b, std::uint64_t points, std::size_t tile_size)
+{
+  Grid g;
+  const double extent[3] = {b.xmax() - b.xmin(), b.ymax() - b.ymin(), b.zmax() - b.zmin()};
+  const double largest = std::max({extent[0], extent[1], extent[2]});
+  // Cells of about 4096 points (at most a 16th of a tile) on a surface (occupied cells ~ 2 x side^2):
+  // the unit of the reads around a tile; a grid of at most 200^3 cells.
+  const double cell_points = std::max(1., std::min(4096., double(tile_size) / 16.));
+  const double side = std::min(200., std::max(1., std::ceil(std::sqrt(double(points) / (2. * cell_points)))));
+  g.cell = largest > 0 ? largest / side : 1.;
+  for(int a = 0; a < 3; ++a) {
+    g.lo[a] = a == 0 ? b.xmin() : a == 1 ? b.ymin() : b.zmin();
+    g.n[a] = std::max(1L, std::min(200L, long(std::ceil(extent[a] / g.cell))));
+  }
+  return g;
+}
+
+std::uint64_t box_count(const Grid& g, const std::vector<std::uint64_t>& counts, const long lo[3], const long hi[3])
+{
+  std::uint64_t c = 0;
+  for(long x = lo[0]; x < hi[0]; ++x)
+    for(long y = lo[1]; y < hi[1]; ++y)
+      for(long z = lo[2]; z < hi[2]; ++z) c += counts[std::size_t((x * g.n[1] + y) * g.n[2] + z)];
+  return c;
+}
+
+void split_tiles(const Grid& g, const std::vector<std::uint64_t>& counts, Cell_box box, std::size_t tile_size,
+                 std::vector<Cell_box>& tiles)
+{
+  if(box.count == 0) return;
+  int axis = 0;
+  for(int a = 1; a < 3; ++a)
+    if(box.hi[a] - box.lo[a] > box.hi[axis] - box.lo[axis]) axis = a;
+  if(box.count <= tile_size || box.hi[axis] - box.lo[axis] < 2) { tiles.push_back(box); return; }
+  // The cut: the cell layer where the count below it reaches half of the box's.
+  std::uint64_t below = 0;
+  long cut = box.lo[axis] + 1;
+  for(long c = box.lo[axis]; c + 1 < box.hi[axis]; ++c) {
+    long lo[3] = {box.lo[0], box.lo[1], box.lo[2]}, hi[3] = {box.hi[0], box.hi[1], box.hi[2]};
+    lo[axis] = c; hi[axis] = c + 1;
+    below += box_count(g, counts, lo, hi);
+    cut = c + 1;
+    if(2 * below >= box.count) break;
+  }
+  Cell_box a = box, b = box;
+  a.hi[axis] = cut; b.lo[axis] = cut;
+  a.count = box_count(g, counts, a.lo, a.hi);
+  b.count = box.count - a.count;
+  split_tiles(g, counts, a, tile_size, tiles);
+  split_tiles(g, counts, b, tile_size, tiles);
+}
+
+void sort_by_index(std::vector<Record>& records)
+{
+  auto less = [](const Record& a, const Record& b) { return a.index < b.index; };
+#ifdef CGAL_LINKED_WITH_TBB
+  tbb::parallel_sort(records.begin(), records.end(), less);
+#else
+  std::sort(records.begin(), records.end(), less);
+#endif
+}
+
+// ------------------------------------------------------------------------------------------------
+enum class Pass { BARE_NORMALS, COMMAND, RESULT_NORMALS };
+
+class Streamed_pass
+{
+public:
+  Streamed_pass(const Record_file& in, Pass pass, const Fit_settings& s, std::size_t tile_size, const std::string& near,
+                const std::function<bool(double)>& progress)
+    : in_(in), pass_(pass), s_(s), tile_size_(tile_size), near_(near), progress_(progress) {}
+
+  // Bins the records by tile, runs the tiles, returns their records.
+  Record_file run(Streamed_run& log)
+  {
+    const Clock::time_point t0 = Clock::now();
+    bin();
+    log.binning_seconds += seconds_since(t0);
+    const Clock::time_point t1 = Clock::now();
+    Record_file out;
+    out.file.reset(new Scratch_file(near_));
+    out.count = in_.count;
+    out.bytes = pass_ == Pass::COMMAND ? result_bytes(s_.command) : sizeof(Record);
+    Record_stream writer(*out.file, out.bytes, 0, in_.count, 1 << 14);
+    CGAL::Wavejets::Processing_report report;
+    for(std::size_t t = 0; t < tiles_.size(); ++t) {
+      const std::uint64_t start = writer.written();
+      for(const Result& r : run_tile(t, report)) {
+        writer.put(&r);
+        const double* p = r.record.position;
+        out.bounds += CGAL::Bbox_3(p[0], p[1], p[2], p[0], p[1], p[2]);
+      }
+      out.runs.emplace_back(start, writer.written());
+    }
+    writer.flush();
+    log.fit_seconds += seconds_since(t1);
+    log.rerun_points += rerun_;
+    if(pass_ == Pass::COMMAND) log.tiles = tiles_.size();
+    (pass_ == Pass::BARE_NORMALS ? log.bare_normals : pass_ == Pass::COMMAND ? log.command : log.result_normals) = report;
+    return out;
+  }
+
+private:
+  void bin()
+  {
+    grid_ = make_grid(in_.bounds, in_.count, tile_size_);
+    std::vector<std::uint64_t> counts(grid_.size(), 0);
+    for_each_input([&](const Record& r) { ++counts[grid_.cell_of(r.position)]; });
+    Cell_box all{{0, 0, 0}, {grid_.n[0], grid_.n[1], grid_.n[2]}, in_.count};
+    split_tiles(grid_, counts, all, tile_size_, tiles_);
+    // Cells in tile order: a tile's records are contiguous in the bins, each cell's too.
+    cell_first_.assign(grid_.size(), 0);
+    tile_of_.assign(grid_.size(), 0);
+    std::vector<std::uint32_t>& tile_of = tile_of_;
+    std::uint64_t next = 0;
+    for(std::size_t t = 0; t < tiles_.size(); ++t) {
+      tile_first_.push_back(next);
+      const Cell_box& b = tiles_[t];
+      for(long x = b.lo[0]; x < b.hi[0]; ++x)
+        for(long y = b.lo[1]; y < b.hi[1]; ++y)
+          for(long z = b.lo[2]; z < b.hi[2]; ++z) {
+            const std::size_t c = std::size_t((x * grid_.n[1] + y) * grid_.n[2] + z);
+            cell_first_[c] = next;
+            tile_of[c] = std::uint32_t(t);
+            next += counts[c];
+          }
+    }
+    tile_first_.push_back(next);
+    cell_count_ = std::move(counts);
+    bins_.reset(new Scratch_file(near_));
+    // Each tile buffers its records, then writes them at their cells' next places.
+    // 64 MB of buffers in all, at least 64 records per tile.
+    const std::size_t per_tile = std::max<std::size_t>(64, (std::size_t(64) << 20) / sizeof(Record) / tiles_.size());
+    std::vector<std::vector<Record> > buffers(tiles_.size());
+    tile_box_.assign(tiles_.size(), CGAL::Bbox_3());
+    std::vector<std::uint64_t> cursor = cell_first_;
+    std::vector<char> bytes;
+    auto flush = [&](std::vector<Record>& buffer) {
+      std::vector<std::pair<std::uint64_t, const Record*> > placed;
+      for(const Record& r : buffer) placed.emplace_back(cursor[grid_.cell_of(r.position)]++, &r);
+      std::sort(placed.begin(), placed.end());
+      for(std::size_t i = 0; i < placed.size();) {
+        std::size_t j = i + 1;
+        while(j < placed.size() && placed[j].first == placed[j - 1].first + 1) ++j;
+        bytes.resize((j - i) * sizeof(Record));
+        for(std::size_t m = i; m < j; ++m) std::memcpy(&bytes[(m - i) * sizeof(Record)], placed[m].second, sizeof(Record));
+        bins_->write(bytes.data(), bytes.size(), placed[i].first * sizeof(Record));
+        i = j;
+      }
+      buffer.clear();
+    };
+    for_each_input([&](const Record& r) {
+      const std::uint32_t t = tile_of[grid_.cell_of(r.position)];
+      tile_box_[t] += CGAL::Bbox_3(r.position[0], r.position[1], r.position[2], r.position[0], r.position[1], r.position[2]);
+      std::vector<Record>& buffer = buffers[t];
+      if(buffer.empty()) buffer.reserve(per_tile);
+      buffer.push_back(r);
+      if(buffer.size() == per_tile) flush(buffer);
+    });
+    for(std::vector<Record>& buffer : buffers) flush(buffer);
+  }
+
+  template <class F> void for_each_input(const F& f)
+  {
+    Record_stream reader(*in_.file, in_.bytes, 0, in_.count);
+    while(!reader.done()) f(reader.take().record);
+  }
+
+  // The records of the points in the closed box `extent`, in index order.
+  std::vector<Record> points_in(const CGAL::Bbox_3& extent)
+  {
+    const double lo[3] = {extent.xmin(), extent.ymin(), extent.zmin()}, hi[3] = {extent.xmax(), extent.ymax(), extent.zmax()};
+    // The cells of the box grown by far more than the rounding error of a point's cell (so that a
+    // point of the box in a neighbor cell by rounding is read too).
+    double grown_lo[3], grown_hi[3];
+    for(int a = 0; a < 3; ++a) {
+      const double e = 1e-9 * (std::abs(lo[a]) + std::abs(hi[a]) + std::abs(grid_.lo[a]) + grid_.cell);
+      grown_lo[a] = lo[a] - e;
+      grown_hi[a] = hi[a] + e;
+    }
+    long from[3], to[3];
+    for(int a = 0; a < 3; ++a) {
+      from[a] = grid_.cell_index(grown_lo, a);
+      to[a] = grid_.cell_index(grown_hi, a) + 1;
+    }
+    std::uint64_t count = 0;
+    for(long x = from[0]; x < to[0]; ++x)
+      for(long y = from[1]; y < to[1]; ++y)
+        for(long z = from[2]; z < to[2]; ++z) count += cell_count_[std::size_t((x * grid_.n[1] + y) * grid_.n[2] + z)];
+    std::vector<Record> found;
+    found.reserve(std::size_t(count));
+    std::vector<Record> cell;
+    for(long x = from[0]; x < to[0]; ++x)
+      for(long y = from[1]; y < to[1]; ++y)
+        for(long z = from[2]; z < to[2]; ++z) {
+          const std::size_t c = std::size_t((x * grid_.n[1] + y) * grid_.n[2] + z);
+          if(cell_count_[c] == 0) continue;
+          cell.resize(std::size_t(cell_count_[c]));
+          bins_->read(cell.data(), cell.size() * sizeof(Record), cell_first_[c] * sizeof(Record));
+          for(const Record& r : cell) {
+            bool inside = true;
+            for(int a = 0; a < 3; ++a) inside = inside && r.position[a] >= lo[a] && r.position[a] <= hi[a];
+            if(inside) found.push_back(r);
+          }
+        }
+    sort_by_index(found);
+    return found;
+  }
+
+  // The first halo of a tile: 1.5 x the radius of a disk holding k + 1 points at the density of
+  // the targets (the library's own first guess in a tiled run), or the neighborhood radius.
+  double first_halo(const CGAL::Bbox_3& box, std::size_t count) const
+  {
+    const double diagonal = std::sqrt(CGAL::square(in_.bounds.xmax() - in_.bounds.xmin()) +
+                                      CGAL::square(in_.bounds.ymax() - in_.bounds.ymin()) +
+                                      CGAL::square(in_.bounds.zmax() - in_.bounds.zmin()));
+    double h = 0.;
+    if(s_.radius > 0) h = s_.radius * (1. + 1e-6);
+    else {
+      double e[3] = {box.xmax() - box.xmin(), box.ymax() - box.ymin(), box.zmax() - box.zmin()};
+      std::sort(e, e + 3);
+      const double pi = 3.14159265358979323846, k = double(s_.k + 1);
+      if(e[1] > 0) h = 1.5 * std::sqrt(k * e[2] * e[1] / (pi * double(count)));
+      else if(e[2] > 0) h = 1.5 * e[2] * k / (2. * double(count));
+    }
+    return h > 0 ? h : 1e-6 * diagonal;
+  }
+
+  // The records of the tile's points after the pass.
+  std::vector<Result> run_tile(std::size_t t, CGAL::Wavejets::Processing_report& report)
+  {
+    // The tile's points and those within the first halo around them, in index order.
+    const CGAL::Bbox_3& box = tile_box_[t];
+    const std::size_t tile_points = std::size_t(tile_first_[t + 1] - tile_first_[t]);
+    const double halo = first_halo(box, tile_points);
+    const CGAL::Bbox_3 extent(box.xmin() - halo, box.ymin() - halo, box.zmin() - halo, box.xmax() + halo, box.ymax() + halo, box.zmax() + halo);
+    const std::vector<Record> points = points_in(extent);
+    std::vector<Record> targets;
+    targets.reserve(tile_points);
+    for(const Record& r : points)
+      if(tile_of_[grid_.cell_of(r.position)] == t) targets.push_back(r);
+    if(targets.size() != tile_points) throw std::logic_error("streamed run: a tile's point is missing from its own extent");
+    std::vector<Result> results;
+    results.reserve(tile_points);
+    std::vector<Record> outside = fit_targets(points, targets, extent, results, report, tile_points);
+    rerun_ += outside.size();
+    // The points whose neighborhood left the halo (few, where the sampling is sparse), cell by
+    // cell, each group within a halo twice as large as the last, until none is left.
+    std::sort(outside.begin(), outside.end(), [&](const Record& a, const Record& b) {
+      const std::size_t ca = grid_.cell_of(a.position), cb = grid_.cell_of(b.position);
+      return ca != cb ? ca < cb : a.index < b.index;
+    });
+    for(std::size_t i = 0; i < outside.size();) {
+      std::size_t j = i + 1;
+      while(j < outside.size() && grid_.cell_of(outside[j].position) == grid_.cell_of(outside[i].position)) ++j;
+      std::vector<Record> group(outside.begin() + std::ptrdiff_t(i), outside.begin() + std::ptrdiff_t(j));
+      for(double larger = 2 * halo; !group.empty(); larger *= 2) group = fit_within(group, larger, results, report, tile_points);
+      i = j;
+    }
+    done_points_ += tile_points;
+    return results;
+  }
+
+  // Fits `targets` (in index order) among the points within `halo` of their bounding box: appends
+  // their results where exact, keeping `results` in index order, returns the others.
+  std::vector<Record> fit_within(const std::vector<Record>& targets, double halo, std::vector<Result>& results,
+                                 CGAL::Wavejets::Processing_report& report, std::size_t tile_points)
+  {
+    CGAL::Bbox_3 b;
+    for(const Record& r : targets) b += CGAL::Bbox_3(r.position[0], r.position[1], r.position[2], r.position[0], r.position[1], r.position[2]);
+    const CGAL::Bbox_3 extent(b.xmin() - halo, b.ymin() - halo, b.zmin() - halo, b.xmax() + halo, b.ymax() + halo, b.zmax() + halo);
+    const std::size_t sorted = results.size();
+    std::vector<Record> outside = fit_targets(points_in(extent), targets, extent, results, report, tile_points);
+    std::inplace_merge(results.begin(), results.begin() + std::ptrdiff_t(sorted), results.end(),
+                       [](const Result& x, const Result& y) { return x.record.index < y.record.index; });
+    return outside;
+  }
+
+  // One library call on the points of `extent`, for `targets` (in index order): appends their
+  // records to `results` where exact, returns the others.
+  std::vector<Record> fit_targets(const std::vector<Record>& points, const std::vector<Record>& targets,
+                                  const CGAL::Bbox_3& extent, std::vector<Result>& results,
+                                  CGAL::Wavejets::Processing_report& report, std::size_t tile_points)
+  {
+    Point_set ps;
+    ps.add_normal_map();
+    ps.reserve(points.size());
+    for(const Record& r : points)
+      ps.insert(Point(r.position[0], r.position[1], r.position[2]), Vector(r.normal[0], r.normal[1], r.normal[2]));
+    const Output_columns columns = add_output_columns(ps, s_.command);
+    In_tile tiling{CGAL::Wavejets::Tile{extent, in_.bounds}, ps.add_property_map<unsigned char>("owned", 0).first,
+                   ps.add_property_map<unsigned char>("outside", 0).first};
+    const std::vector<Point_set::Index> keys(ps.begin(), ps.end());
+    std::vector<Point_set::Index> target_keys;
+    {
+      std::size_t j = 0;
+      for(std::size_t i = 0; i < points.size() && j < targets.size(); ++i)
+        if(points[i].index == targets[j].index) {
+          tiling.owned[keys[i]] = 1;
+          target_keys.push_back(keys[i]);
+          ++j;
+        }
+      if(j != targets.size()) throw std::logic_error("streamed run: a tile's point is missing from its own extent");
+    }
+    const double base = double(done_points_);
+    const Callback cb = [&](double x) { return progress_((base + x * double(tile_points)) / double(in_.count)); };
+    CGAL::Wavejets::Processing_report r;
+    if(pass_ == Pass::BARE_NORMALS)
+      r = estimate_normals_of_bare_points(ps, s_, s_.command == NORMALS ? s_.order : 2,
+                                          s_.command == NORMALS ? Uchar_bool_map{columns.fitted} : Uchar_bool_map{}, cb, tiling);
+    else if(pass_ == Pass::COMMAND) r = run_fit_command(ps, s_, columns, cb, tiling);
+    else r = estimate_normals_of_result(ps, s_, cb, tiling);
+    if(r.interrupted) throw File_error("interrupted");
+    add_report(report, r);
+    std::vector<Record> outside;
+    for(std::size_t j = 0; j < targets.size(); ++j) {
+      const Point_set::Index i = target_keys[j];
+      if(tiling.outside[i]) { outside.push_back(targets[j]); continue; }
+      Result out = Result();
+      out.record = targets[j];
+      Record& r = out.record;
+      const Vector& n = ps.normal(i);
+      r.normal[0] = n.x(); r.normal[1] = n.y(); r.normal[2] = n.z();
+      const bool writes_fitted = pass_ == Pass::COMMAND || (pass_ == Pass::BARE_NORMALS && s_.command == NORMALS);
+      if(writes_fitted) r.fitted = columns.fitted[i];
+      if(pass_ == Pass::COMMAND) {
+        const Point& p = ps.point(i);
+        r.position[0] = p.x(); r.position[1] = p.y(); r.position[2] = p.z();
+        for(std::size_t c = 0; c < columns.curvature.size(); ++c) out.curvature[c] = columns.curvature[c][i];
+      }
+      results.push_back(out);
+    }
+    return outside;
+  }
+
+  const Record_file& in_;
+  Pass pass_;
+  const Fit_settings& s_;
+  std::size_t tile_size_;
+  std::string near_;
+  std::function<bool(double)> progress_;
+  Grid grid_;
+  std::vector<Cell_box> tiles_;
+  std::vector<std::uint64_t> cell_first_, cell_count_, tile_first_;
+  std::vector<std::uint32_t> tile_of_;   // per cell
+  std::vector<CGAL::Bbox_3> tile_box_;   // of each tile's points
+  std::unique_ptr<Scratch_file> bins_;
+  std::uint64_t done_points_ = 0, rerun_ = 0;
+};
+
+// Chunks of at most this many points are read and written at a time.
+const std::size_t chunk_points = 1 << 16;
+
+// Pass 1: the input's points as records, checked as the in-core reader checks them.
+Record_file scan(const std::string& in_path, const std::string& near, const Fit_settings& s, Streamed_run& log)
+{
+  const Clock::time_point t0 = Clock::now();
+  Input_chunks chunks(in_path);
+  log.format = chunks.format();
+  Record_file f;
+  f.file.reset(new Scratch_file(near));
+  Record_stream writer(*f.file, sizeof(Record), 0, std::numeric_limits<std::uint64_t>::max());
+  Point_set chunk;
+  bool all_same = true, any_normal = false;
+  Point first_point(0, 0, 0);
+  while(chunks.next(chunk, chunk_points)) {
+    for(Point_set::Index i : chunk) {
+      const Point& p = chunk.point(i);
+      if(!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z()))
+        throw File_error(in_path + ": point " + std::to_string(f.count) + " has a NaN or infinite coordinate (remove such points first)");
+      Record r;
+      std::memset(&r, 0, sizeof r);
+      r.index = f.count;
+      r.position[0] = p.x(); r.position[1] = p.y(); r.position[2] = p.z();
+      if(chunk.has_normal_map()) {
+        const Vector& n = chunk.normal(i);
+        r.normal[0] = n.x(); r.normal[1] = n.y(); r.normal[2] = n.z();
+        any_normal = any_normal || (std::isfinite(n.squared_length()) && n.squared_length() > 0);
+      }
+      const CGAL::Bbox_3 b = p.bbox();
+      if(f.count == 0) { first_point = p; f.bounds = b; }
+      else { f.bounds += b; all_same = all_same && p == first_point; }
+      writer.put(&r);
+      ++f.count;
+    }
+  }
+  writer.flush();
+  if(f.count == 0) throw File_error(in_path + ": contains no points");
+  if(all_same)
+    throw File_error(in_path + (f.count == 1 ? std::string(": contains a single point") : ": all " + std::to_string(f.count) + " points coincide") +
+                     " (no surface to fit)");
+  log.points = std::size_t(f.count);
+  log.had_normals = any_normal;
+  if(!any_normal) {
+    if(!s.viewpoint)
+      throw File_error(in_path + ": has no normals; a streamed run orients estimated normals toward a viewpoint: give "
+                       "--orient-toward X,Y,Z (e.g. the scanner's position), or process it in memory (no --max-memory / "
+                       "--tile-size: oriented by a minimum spanning tree)");
+    // Normals that are all zero or not finite count as none, as in core.
+    Record_file clean;
+    clean.file.reset(new Scratch_file(near));
+    clean.count = f.count;
+    clean.bounds = f.bounds;
+    Record_stream reader(*f.file, sizeof(Record), 0, f.count), out(*clean.file, sizeof(Record), 0, f.count);
+    while(!reader.done()) {
+      Record r = reader.take().record;
+      r.normal[0] = r.normal[1] = r.normal[2] = 0.;
+      out.put(&r);
+    }
+    out.flush();
+    f = std::move(clean);
+  }
+  f.runs.emplace_back(0, f.count);
+  log.scan_seconds = seconds_since(t0);
+  return f;
+}
+
+// The records of the indices [first, first + out.size()), from the runs of `f` (each sorted).
+class Record_merge
+{
+public:
+  explicit Record_merge(Record_file& f)
+  {
+    const std::size_t bytes = f.bytes;
+    // 32 MB of buffers in all, at least 64 records per run.
+    const std::size_t buffered = std::max<std::size_t>(64, (std::size_t(32) << 20) / bytes / std::max<std::size_t>(1, f.runs.size()));
+    for(const auto& run : f.runs) streams_.emplace_back(new Record_stream(*f.file, bytes, run.first, run.second, buffered));
+  }
+  void next(std::uint64_t first, std::vector<Result>& out)
+  {
+    for(auto& s : streams_)
+      while(!s->done() && s->peek().record.index < first + out.size()) {
+        const Result& r = s->take();
+        out[std::size_t(r.record.index - first)] = r;
+      }
+  }
+private:
+  std::vector<std::unique_ptr<Record_stream> > streams_;
+};
+
+} // namespace
+
+std::size_t tile_size_for_memory(double bytes)
+{
+  // About 600 bytes per point of a tile and its halo (the Point_set, the records, the library's
+  // k-d tree and fits), and 200 MB for the rest (grid, buffers).
+  const double points = (bytes - 200e6) / 600.;
+  return std::size_t(std::max(1000., points));
+}
+
+namespace {
+
+Streamed_run run(const std::string& in_path, const std::string& out_path, const Fit_settings& s,
+                 const Streaming_settings& settings, const Callback& progress)
+{
+  Streamed_run log;
+  if(output_format(out_path) != Output_format::PLY)
+    throw File_error(out_path + ": a streamed run writes a .ply file");
+  Record_file records = scan(in_path, out_path, s, log);
+  const int passes = (log.had_normals ? 0 : 1) + (s.command == NORMALS && !log.had_normals ? 0 : 1) + (s.command == POSITIONS ? 1 : 0);
+  int pass_index = 0;
+  auto pass_progress = [&](double x) {   // the whole run: scan 5%, passes 85%, writing 10%
+    return progress(0.05 + 0.85 * (double(pass_index) + std::min(1., x)) / double(passes));
+  };
+  auto run_pass = [&](Pass p) {
+    Streamed_pass pass(records, p, s, settings.tile_size, out_path, pass_progress);
+    Record_file next = pass.run(log);
+    records = std::move(next);
+    ++pass_index;
+  };
+  if(!log.had_normals) run_pass(Pass::BARE_NORMALS);
+  if(s.command != NORMALS || log.had_normals) run_pass(Pass::COMMAND);
+  if(s.command == POSITIONS) run_pass(Pass::RESULT_NORMALS);
+
+  // Writing: the input again, chunk by chunk, with the records' values.
+  const Clock::time_point tw = Clock::now();
+  Output_file out(out_path);
+  {
+    std::ofstream os(out.temporary_path(), std::ios::binary);
+    if(!os) throw File_error(out_path + ": cannot write (" + std::strerror(errno) + ")");
+    Input_chunks chunks(in_path);
+    Record_merge merge(records);
+    Point_set chunk;
+    std::uint64_t first = 0;
+    bool header_written = false;
+    std::vector<Result> values;
+    while(chunks.next(chunk, chunk_points)) {
+      if(chunk.empty()) continue;
+      if(log.had_normals && !chunk.has_normal_map()) chunk.add_normal_map(Vector(0, 0, 0));
+      if(!log.had_normals && chunk.has_normal_map()) chunk.remove_normal_map();
+      const Output_columns columns = add_output_columns(chunk, s.command);
+      values.assign(chunk.size(), Result());
+      merge.next(first, values);
+      std::size_t j = 0;
+      for(Point_set::Index i : chunk) {
+        const Result& v = values[j++];
+        const Record& r = v.record;
+        if(s.command == POSITIONS) chunk.point(i) = Point(r.position[0], r.position[1], r.position[2]);
+        chunk.normal(i) = Vector(r.normal[0], r.normal[1], r.normal[2]);
+        columns.fitted[i] = (unsigned char)(r.fitted);
+        for(std::size_t c = 0; c < columns.curvature.size(); ++c) columns.curvature[c][i] = v.curvature[c];
+      }
+      const std::string text = ply_text(chunk, settings.ascii, settings.comment);
+      const std::size_t body = text.find("end_header\n") + 11;
+      if(!header_written) {
+        std::string header = text.substr(0, body);
+        const std::string count = "element vertex " + std::to_string(chunk.size()) + "\n";
+        header.replace(header.find(count), count.size(), "element vertex " + std::to_string(log.points) + "\n");
+        os.write(header.data(), std::streamsize(header.size()));
+        header_written = true;
+        for(const std::string& p : chunk.properties())
+          if(p != "index" && p != "point") log.columns.push_back(p == "normal" ? "nx ny nz" : p);
+      }
+      os.write(text.data() + body, std::streamsize(text.size() - body));
+      first += chunk.size();
+      if(!os) break;
+      progress(0.9 + 0.1 * double(first) / double(log.points));
+    }
+    os.close();
+    if(!os) throw File_error(out_path + ": cannot write (disk full or not writable?)");
+    if(first != log.points) throw File_error(in_path + ": changed while it was read (" + std::to_string(first) + " points read again, " +
+                                             std::to_string(log.points) + " before)");
+  }
+  out.commit();
+  log.write_seconds = seconds_since(tw);
+  return log;
+}
+
+} // namespace
+
+Streamed_run run_streamed(const std::string& in_path, const std::string& out_path, const Fit_settings& s,
+                          const Streaming_settings& settings, const Callback& progress)
+{
+  try {
+    return run(in_path, out_path, s, settings, progress);
+  } catch(const File_error&) {
+    throw;
+  } catch(const std::runtime_error& e) {   // the scratch files' errors (a full disk): name the output
+    throw File_error(out_path + ": " + e.what());
+  }
+}
+
+} // namespace wavejets_demo
