@@ -132,6 +132,30 @@ std::string lower_extension(const std::string& path)
   return e;
 }
 
+void check_ply_coordinate_types(const std::string& path)
+{
+  std::ifstream is(path, std::ios::binary);
+  std::string line, element, types[6];
+  const char* names[6] = {"x", "y", "z", "nx", "ny", "nz"};
+  for(int i = 0; i < 100000 && std::getline(is, line) && line.compare(0, 10, "end_header") != 0; ++i) {
+    std::istringstream s(line);
+    std::string word, a, b;
+    s >> word >> a >> b;
+    if(word == "element") element = a;
+    if(word == "property" && element == "vertex")
+      for(int f = 0; f < 6; ++f)
+        if(b == names[f]) types[f] = a;
+  }
+  auto is_float = [](const std::string& t) { return t == "float" || t == "float32"; };
+  auto is_double = [](const std::string& t) { return t == "double" || t == "float64"; };
+  const bool normals = !types[3].empty() && !types[4].empty() && !types[5].empty();   // else CGAL skips them
+  const bool floats = is_float(types[0]) || is_float(types[1]) || is_float(types[2]);
+  for(int f = 0; f < (normals ? 6 : 3); ++f)
+    if(!types[f].empty() && !(is_float(types[f]) || (!floats && is_double(types[f]))))
+      throw File_error(path + ": PLY property '" + types[f] + " " + names[f] + "' cannot be read: x, y, z, nx, ny, nz must be "
+                       "float or double, and all float when a coordinate is float (convert the file, e.g. in MeshLab or CloudCompare)");
+}
+
 Input read_input(const std::string& path)
 {
   const auto t0 = std::chrono::steady_clock::now();
@@ -144,6 +168,7 @@ Input read_input(const std::string& path)
   if(!is) throw File_error(path + ": cannot open (" + std::strerror(errno) + ")");
   if(is.peek() == std::ifstream::traits_type::eof()) throw File_error(path + ": the file is empty");
 
+  if(ext == "ply") check_ply_coordinate_types(path);
   // CGAL reports its parse errors on std::cerr: capture them, to give one line.
   std::ostringstream cgal_messages;
   std::streambuf* saved = std::cerr.rdbuf(cgal_messages.rdbuf());

@@ -24,6 +24,11 @@ struct File_error : std::runtime_error { using std::runtime_error::runtime_error
 /// The extension of `path`, lower case, without the dot ("" if none).
 std::string lower_extension(const std::string& path);
 
+/// Throws `File_error` if the PLY header of `path` gives x, y, z, nx, ny or nz a type that CGAL's
+/// point set reader cannot read (it dereferences a null pointer): they must be float or double,
+/// and all float when x, y or z is float.
+void check_ply_coordinate_types(const std::string& path);
+
 /// A point set or a mesh as read from a file.
 struct Input
 {

@@ -51,7 +51,10 @@ public:
                        "to process a ." + ext + " file in memory)");
     if(!is_) throw File_error(path + ": cannot open (" + std::strerror(errno) + ")");
     if(is_.peek() == std::ifstream::traits_type::eof()) throw File_error(path + ": the file is empty");
-    if(ext == "ply") read_ply_header();
+    if(ext == "ply") {
+      check_ply_coordinate_types(path);
+      read_ply_header();
+    }
     else format_ = "XYZ";
   }
   const std::string& format() const { return format_; }

@@ -369,6 +369,7 @@ same_as_in_core() { # NAME TILE_SIZE -- COMMAND ARGS...
 }
 
 cli_case_streamed_identical() {
+  awk '{ print $1, $2, $3 }' "$kitten" > bare.xyz
   for c in normals curvature enhance-positions enhance-normals; do same_as_in_core "kitten_$c" 300 -- "$c" "$kitten"; done
   # k larger than a tile's population; a radius; PLY in (binary and ASCII) and ASCII out.
   same_as_in_core k100 20 -- curvature "$kitten" --k 100
@@ -377,6 +378,15 @@ cli_case_streamed_identical() {
   "$wj" normals "$kitten" k.ply -q && "$wj" normals "$kitten" k_ascii.ply -q --ascii
   same_as_in_core ply 100 -- enhance-positions k.ply --gain 3 --max-displacement none
   same_as_in_core ply_ascii 100 -- enhance-normals k_ascii.ply --ascii --consistent-normals
+  # Binary PLY as scanners write it: float or int coordinates, either byte order, another column
+  # between them and the normals, or no normals (read directly or by CGAL's reader: the same values).
+  for variant in "float little" "double big" "float big"; do
+    set -- $variant
+    "$check" binary_ply "$kitten" "bin_$1_$2.ply" "$1" "$2" > /dev/null || fail "binary_ply $variant"
+    same_as_in_core "bin_$1_$2" 200 -- curvature "bin_$1_$2.ply"
+  done
+  "$check" binary_ply bare.xyz bare_float.ply float little > /dev/null || fail "binary_ply bare"
+  same_as_in_core bare_float 150 -- normals bare_float.ply --orient-toward 0,0,5
   # --max-memory: one tile here; the summary says how the run went.
   "$wj" curvature "$kitten" mm.ply --max-memory 1G > summary.txt || fail "--max-memory run failed"
   cmp -s mm.ply in_kitten_curvature.ply || fail "--max-memory output differs from the in-core one"
@@ -411,6 +421,10 @@ cli_case_streamed_errors() {
   "$wj" normals "$kitten" k.ply -q
   head -c 30000 k.ply > truncated.ply
   expect_error truncated.ply out.ply -- normals truncated.ply out.ply --tile-size 100
+  # Integer coordinates (CGAL's reader would crash on them): a clear error, in memory and streamed.
+  "$check" binary_ply "$kitten" int.ply int little > /dev/null || fail "binary_ply int"
+  expect_error "int x" out.ply -- normals int.ply out.ply
+  expect_error "int x" out.ply -- normals int.ply out.ply --tile-size 100
   # A full disk (here a file size limit: writes fail with EFBIG) fails the run, leaves an existing
   # OUT as it was, and no scratch file.
   echo "previous" > kept.ply

@@ -29,10 +29,14 @@
 
 #include "render.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <iostream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -264,7 +268,48 @@ int main(int argc, char** argv)
     std::cout << "OK" << std::endl;
     return EXIT_SUCCESS;
   }
+  if(mode == "binary_ply" && argc == 6) {
+    // IN's points (and normals) written to OUT as a binary PLY of TYPE (float, double or int: coordinates times
+    // 1000) and ENDIANNESS (little, big), with a uchar column between the coordinates and the normals.
+    Point_set in;
+    if(!read(argv[2], in)) return fail(std::string("cannot read ") + argv[2]);
+    const std::string type = argv[4], endianness = argv[5];
+    if(type != "float" && type != "double" && type != "int") return fail("TYPE: float, double or int");
+    if(endianness != "little" && endianness != "big") return fail("ENDIANNESS: little or big");
+    std::ostringstream os;
+    os << "ply\nformat binary_" << endianness << "_endian 1.0\nelement vertex " << in.size() << "\n";
+    for(const char* name : {"x", "y", "z"}) os << "property " << type << " " << name << "\n";
+    os << "property uchar red\n";
+    if(in.has_normal_map())
+      for(const char* name : {"nx", "ny", "nz"}) os << "property " << type << " " << name << "\n";
+    os << "end_header\n";
+    const std::uint16_t one = 1;
+    const bool swap = (*reinterpret_cast<const unsigned char*>(&one) == 1) != (endianness == "little");
+    auto put = [&](const void* value, std::size_t bytes) {
+      char b[8];
+      std::memcpy(b, value, bytes);
+      if(swap) std::reverse(b, b + bytes);
+      os.write(b, std::streamsize(bytes));
+    };
+    auto put_value = [&](double v) {
+      if(type == "float") { const float f = float(v); put(&f, 4); }
+      else if(type == "double") put(&v, 8);
+      else { const std::int32_t i = std::int32_t(std::lround(v * 1000.)); put(&i, 4); }
+    };
+    for(Point_set::Index i : in) {
+      const Kernel::Point_3& p = in.point(i);
+      put_value(p.x()); put_value(p.y()); put_value(p.z());
+      const unsigned char red = static_cast<unsigned char>(std::size_t(i) % 251);
+      put(&red, 1);
+      if(in.has_normal_map()) { const Kernel::Vector_3& n = in.normal(i); put_value(n.x()); put_value(n.y()); put_value(n.z()); }
+    }
+    std::ofstream out(argv[3], std::ios::binary);
+    out << os.str();
+    if(!out) return fail(std::string("cannot write ") + argv[3]);
+    std::cout << "OK: wrote " << argv[3] << std::endl;
+    return EXIT_SUCCESS;
+  }
   if(mode == "renderer" && argc == 2) return renderer_checks();
-  std::cerr << "usage: wavejets_check points IN OUT TOLERANCE [PROPERTY...] | same A B | agree A B F | motion IN OUT K LOW HIGH FRACTION | png FILE W H | faces IN OUT | no_faces OUT | renderer" << std::endl;
+  std::cerr << "usage: wavejets_check points IN OUT TOLERANCE [PROPERTY...] | same A B | agree A B F | motion IN OUT K LOW HIGH FRACTION | png FILE W H | faces IN OUT | no_faces OUT | binary_ply IN OUT float|double|int little|big | renderer" << std::endl;
   return 2;
 }
