@@ -17,6 +17,8 @@
 
 #include <CGAL/Point_set_3/IO.h>
 #include <CGAL/IO/PLY.h>
+#include <CGAL/Wavejets/internal/tiled_driver.h> // estimated_halo
+#include <CGAL/for_each.h>
 
 #ifdef CGAL_LINKED_WITH_TBB
 #include <tbb/parallel_sort.h>
@@ -27,8 +29,10 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <future>
 #include <iostream>
 #include <limits>
+#include <numeric>
 #include <sstream>
 
 namespace wavejets_demo {
@@ -106,6 +110,29 @@ public:
     return true;
   }
 
+  // Binary little-endian PLY whose x, y, z (and nx, ny, nz if any) are float or double, on a
+  // little-endian machine: next_values() reads them as CGAL's reader would, without it.
+  bool reads_directly() const { return direct_; }
+  bool has_normals() const { return has_normals_; }
+  // The next chunk of at most `points` points as 6 doubles each (x, y, z, nx, ny, nz; normals 0
+  // without has_normals()); false at the end.
+  bool next_values(std::vector<double>& values, std::size_t points)
+  {
+    const std::size_t count = std::size_t(std::min<std::uint64_t>(points, remaining_));
+    if(count == 0) return false;
+    buffer_.resize(count * record_bytes_);
+    is_.read(buffer_.data(), std::streamsize(buffer_.size()));
+    const std::size_t got = std::size_t(is_.gcount()) / record_bytes_;
+    if(got < count) truncated(got);
+    values.assign(count * 6, 0.);
+    const int fields = has_normals_ ? 6 : 3;
+    for(std::size_t i = 0; i < count; ++i)
+      for(int f = 0; f < fields; ++f) values[6 * i + std::size_t(f)] = value(&buffer_[i * record_bytes_], fields_[f]);
+    remaining_ -= count;
+    first_ = false;
+    return true;
+  }
+
 private:
   void read_ply_header()
   {
@@ -121,6 +148,7 @@ private:
       if(word == "format") {
         s >> a;
         binary_ = a != "ascii";
+        little_endian_ = a == "binary_little_endian";
       } else if(word == "element") {
         s >> a >> b;
         if(vertex_seen || a != "vertex")
@@ -140,6 +168,10 @@ private:
                                 : a == "int" || a == "uint" || a == "float" || a == "int32" || a == "uint32" || a == "float32" ? 4
                                 : a == "double" || a == "float64" ? 8 : 0;
         if(bytes == 0) throw File_error(path_ + ": not a valid PLY file (unknown property type '" + a + "')");
+        s >> b;
+        const bool floating = a == "float" || a == "float32" || a == "double" || a == "float64";
+        for(int f = 0; f < 6; ++f)
+          if(b == field_names[f]) fields_[f] = Field{record_bytes_, floating ? bytes : 0, true};
         record_bytes_ += bytes;
       }
       header += raw;
@@ -149,6 +181,18 @@ private:
       throw File_error(path_ + ": not a valid PLY file (no end_header, or no vertex element with properties)");
     after_count_ = header;
     announced_ = remaining_;
+    const std::uint16_t one = 1;
+    unsigned char first_byte;
+    std::memcpy(&first_byte, &one, 1);
+    direct_ = binary_ && little_endian_ && first_byte == 1;
+    int normals = 0;
+    for(int f = 0; f < 6; ++f) {
+      if(fields_[f].present && fields_[f].bytes == 0) direct_ = false;   // an integer coordinate: CGAL converts it
+      if(f < 3 && !fields_[f].present) direct_ = false;
+      if(f >= 3 && fields_[f].present) ++normals;
+    }
+    if(normals != 0 && normals != 3) direct_ = false;
+    has_normals_ = normals == 3;
   }
   std::string header_with_count(std::size_t count) const
   {
@@ -160,9 +204,22 @@ private:
                      std::to_string(announced_ - remaining_ + got) + " could be read)");
   }
 
+  // x, y, z, nx, ny, nz in a binary record: offset and size (4: float, 8: double, 0: another type).
+  struct Field { std::size_t offset = 0, bytes = 0; bool present = false; };
+  static constexpr const char* field_names[6] = {"x", "y", "z", "nx", "ny", "nz"};
+  static double value(const char* record, const Field& f)
+  {
+    if(f.bytes == 4) { float v; std::memcpy(&v, record + f.offset, 4); return double(v); }
+    double v;
+    std::memcpy(&v, record + f.offset, 8);
+    return v;
+  }
+
   std::string path_, format_, before_count_, after_count_;
   std::ifstream is_;
-  bool binary_ = false, first_ = true;
+  Field fields_[6];
+  std::vector<char> buffer_;
+  bool binary_ = false, little_endian_ = false, direct_ = false, has_normals_ = false, first_ = true;
   std::size_t record_bytes_ = 0;
   std::uint64_t remaining_ = 0, announced_ = 0;
 };
@@ -342,18 +399,23 @@ public:
     out.file.reset(new Scratch_file(near_));
     out.count = in_.count;
     out.bytes = pass_ == Pass::COMMAND ? result_bytes(s_.command) : sizeof(Record);
-    Record_stream writer(*out.file, out.bytes, 0, in_.count, 1 << 14);
     CGAL::Wavejets::Processing_report report;
+    // The next tile's points are read while the current one is fitted.
+    std::future<Gathered> next = std::async(std::launch::async, [this] { return gather(0); });
+    std::uint64_t written = 0;
     for(std::size_t t = 0; t < tiles_.size(); ++t) {
-      const std::uint64_t start = writer.written();
-      for(const Result& r : run_tile(t, report)) {
-        writer.put(&r);
-        const double* p = r.record.position;
+      const Gathered tile = next.get();
+      if(t + 1 < tiles_.size()) next = std::async(std::launch::async, [this, t] { return gather(t + 1); });
+      run_tile(tile, out.bytes, report);
+      const std::size_t n = tile.targets.size();
+      for(std::size_t i = 0; i < n; ++i) {
+        const double* p = reinterpret_cast<const Record*>(&results_[i * out.bytes])->position;
         out.bounds += CGAL::Bbox_3(p[0], p[1], p[2], p[0], p[1], p[2]);
       }
-      out.runs.emplace_back(start, writer.written());
+      out.file->write(results_.data(), n * out.bytes, written * out.bytes);
+      out.runs.emplace_back(written, written + n);
+      written += n;
     }
-    writer.flush();
     log.fit_seconds += seconds_since(t1);
     log.rerun_points += rerun_;
     if(pass_ == Pass::COMMAND) log.tiles = tiles_.size();
@@ -428,7 +490,7 @@ private:
   }
 
   // The records of the points in the closed box `extent`, in index order.
-  std::vector<Record> points_in(const CGAL::Bbox_3& extent)
+  std::vector<Record> points_in(const CGAL::Bbox_3& extent) const
   {
     const double lo[3] = {extent.xmin(), extent.ymin(), extent.zmin()}, hi[3] = {extent.xmax(), extent.ymax(), extent.zmax()};
     // The cells of the box grown by far more than the rounding error of a point's cell (so that a
@@ -468,101 +530,122 @@ private:
     return found;
   }
 
-  // The first halo of a tile: 1.5 x the radius of a disk holding k + 1 points at the density of
-  // the targets (the library's own first guess in a tiled run), or the neighborhood radius.
+  // The first halo of a tile: the library's own first guess in a tiled run, or a millionth of the
+  // diagonal where that is 0 (the tile's points coincide).
   double first_halo(const CGAL::Bbox_3& box, std::size_t count) const
   {
+    const double extent[3] = {box.xmax() - box.xmin(), box.ymax() - box.ymin(), box.zmax() - box.zmin()};
+    const double h = CGAL::Wavejets::internal::estimated_halo(extent, count, s_.k, s_.radius);
     const double diagonal = std::sqrt(CGAL::square(in_.bounds.xmax() - in_.bounds.xmin()) +
                                       CGAL::square(in_.bounds.ymax() - in_.bounds.ymin()) +
                                       CGAL::square(in_.bounds.zmax() - in_.bounds.zmin()));
-    double h = 0.;
-    if(s_.radius > 0) h = s_.radius * (1. + 1e-6);
-    else {
-      double e[3] = {box.xmax() - box.xmin(), box.ymax() - box.ymin(), box.zmax() - box.zmin()};
-      std::sort(e, e + 3);
-      const double pi = 3.14159265358979323846, k = double(s_.k + 1);
-      if(e[1] > 0) h = 1.5 * std::sqrt(k * e[2] * e[1] / (pi * double(count)));
-      else if(e[2] > 0) h = 1.5 * e[2] * k / (2. * double(count));
-    }
     return h > 0 ? h : 1e-6 * diagonal;
   }
 
-  // The records of the tile's points after the pass.
-  std::vector<Result> run_tile(std::size_t t, CGAL::Wavejets::Processing_report& report)
+  // A tile's points and those within its first halo, in index order, and the positions among them
+  // of the tile's own points (the targets).
+  struct Gathered
   {
-    // The tile's points and those within the first halo around them, in index order.
+    double halo = 0.;
+    CGAL::Bbox_3 extent;
+    std::vector<Record> points;
+    std::vector<std::size_t> targets;
+  };
+  Gathered gather(std::size_t t) const
+  {
+    Gathered g;
     const CGAL::Bbox_3& box = tile_box_[t];
     const std::size_t tile_points = std::size_t(tile_first_[t + 1] - tile_first_[t]);
-    const double halo = first_halo(box, tile_points);
-    const CGAL::Bbox_3 extent(box.xmin() - halo, box.ymin() - halo, box.zmin() - halo, box.xmax() + halo, box.ymax() + halo, box.zmax() + halo);
-    const std::vector<Record> points = points_in(extent);
-    std::vector<Record> targets;
-    targets.reserve(tile_points);
-    for(const Record& r : points)
-      if(tile_of_[grid_.cell_of(r.position)] == t) targets.push_back(r);
-    if(targets.size() != tile_points) throw std::logic_error("streamed run: a tile's point is missing from its own extent");
-    std::vector<Result> results;
-    results.reserve(tile_points);
-    std::vector<Record> outside = fit_targets(points, targets, extent, results, report, tile_points);
+    g.halo = first_halo(box, tile_points);
+    const double h = g.halo;
+    g.extent = CGAL::Bbox_3(box.xmin() - h, box.ymin() - h, box.zmin() - h, box.xmax() + h, box.ymax() + h, box.zmax() + h);
+    g.points = points_in(g.extent);
+    g.targets.reserve(tile_points);
+    for(std::size_t i = 0; i < g.points.size(); ++i)
+      if(tile_of_[grid_.cell_of(g.points[i].position)] == t) g.targets.push_back(i);
+    if(g.targets.size() != tile_points) throw std::logic_error("streamed run: a tile's point is missing from its own extent");
+    return g;
+  }
+
+  // A point whose fit is still to be done: its record and the slot of its result in results_.
+  struct Pending
+  {
+    Record record;
+    std::size_t slot;
+  };
+
+  // Writes the records (`bytes` of each Result) of the tile's points after the pass to results_, in
+  // index order.
+  void run_tile(const Gathered& tile, std::size_t bytes, CGAL::Wavejets::Processing_report& report)
+  {
+    const std::size_t tile_points = tile.targets.size();
+    results_.resize(tile_points * bytes);   // reused from tile to tile
+    result_bytes_ = bytes;
+    std::vector<std::size_t> slots(tile_points);
+    std::iota(slots.begin(), slots.end(), std::size_t(0));
+    std::vector<Pending> outside = fit_targets(tile.points, tile.targets, slots, tile.extent, report, tile_points);
     rerun_ += outside.size();
     // The points whose neighborhood left the halo (few, where the sampling is sparse), cell by
     // cell, each group within a halo twice as large as the last, until none is left.
-    std::sort(outside.begin(), outside.end(), [&](const Record& a, const Record& b) {
-      const std::size_t ca = grid_.cell_of(a.position), cb = grid_.cell_of(b.position);
-      return ca != cb ? ca < cb : a.index < b.index;
+    std::sort(outside.begin(), outside.end(), [&](const Pending& a, const Pending& b) {
+      const std::size_t ca = grid_.cell_of(a.record.position), cb = grid_.cell_of(b.record.position);
+      return ca != cb ? ca < cb : a.record.index < b.record.index;
     });
     for(std::size_t i = 0; i < outside.size();) {
       std::size_t j = i + 1;
-      while(j < outside.size() && grid_.cell_of(outside[j].position) == grid_.cell_of(outside[i].position)) ++j;
-      std::vector<Record> group(outside.begin() + std::ptrdiff_t(i), outside.begin() + std::ptrdiff_t(j));
-      for(double larger = 2 * halo; !group.empty(); larger *= 2) group = fit_within(group, larger, results, report, tile_points);
+      while(j < outside.size() && grid_.cell_of(outside[j].record.position) == grid_.cell_of(outside[i].record.position)) ++j;
+      std::vector<Pending> group(outside.begin() + std::ptrdiff_t(i), outside.begin() + std::ptrdiff_t(j));
+      for(double larger = 2 * tile.halo; !group.empty(); larger *= 2) group = fit_within(group, larger, report, tile_points);
       i = j;
     }
     done_points_ += tile_points;
-    return results;
   }
 
-  // Fits `targets` (in index order) among the points within `halo` of their bounding box: appends
-  // their results where exact, keeping `results` in index order, returns the others.
-  std::vector<Record> fit_within(const std::vector<Record>& targets, double halo, std::vector<Result>& results,
-                                 CGAL::Wavejets::Processing_report& report, std::size_t tile_points)
+  // Fits the points of `group` (in index order) among the points within `halo` of their bounding
+  // box: writes their results where exact, returns the others.
+  std::vector<Pending> fit_within(const std::vector<Pending>& group, double halo, CGAL::Wavejets::Processing_report& report,
+                                  std::size_t tile_points)
   {
     CGAL::Bbox_3 b;
-    for(const Record& r : targets) b += CGAL::Bbox_3(r.position[0], r.position[1], r.position[2], r.position[0], r.position[1], r.position[2]);
+    for(const Pending& g : group) b += CGAL::Bbox_3(g.record.position[0], g.record.position[1], g.record.position[2],
+                                                    g.record.position[0], g.record.position[1], g.record.position[2]);
     const CGAL::Bbox_3 extent(b.xmin() - halo, b.ymin() - halo, b.zmin() - halo, b.xmax() + halo, b.ymax() + halo, b.zmax() + halo);
-    const std::size_t sorted = results.size();
-    std::vector<Record> outside = fit_targets(points_in(extent), targets, extent, results, report, tile_points);
-    std::inplace_merge(results.begin(), results.begin() + std::ptrdiff_t(sorted), results.end(),
-                       [](const Result& x, const Result& y) { return x.record.index < y.record.index; });
-    return outside;
+    const std::vector<Record> points = points_in(extent);
+    std::vector<std::size_t> targets, slots;
+    std::size_t j = 0;
+    for(std::size_t i = 0; i < points.size() && j < group.size(); ++i)
+      if(points[i].index == group[j].record.index) {
+        targets.push_back(i);
+        slots.push_back(group[j].slot);
+        ++j;
+      }
+    if(j != group.size()) throw std::logic_error("streamed run: a point is missing from its own extent");
+    return fit_targets(points, targets, slots, extent, report, tile_points);
   }
 
-  // One library call on the points of `extent`, for `targets` (in index order): appends their
-  // records to `results` where exact, returns the others.
-  std::vector<Record> fit_targets(const std::vector<Record>& points, const std::vector<Record>& targets,
-                                  const CGAL::Bbox_3& extent, std::vector<Result>& results,
-                                  CGAL::Wavejets::Processing_report& report, std::size_t tile_points)
+  // One library call on `points` (in index order, those within `extent`) for those at the positions
+  // `targets` (increasing): writes their records to their `slots` in results_ where exact, returns
+  // the others.
+  std::vector<Pending> fit_targets(const std::vector<Record>& points, const std::vector<std::size_t>& targets,
+                                   const std::vector<std::size_t>& slots, const CGAL::Bbox_3& extent,
+                                   CGAL::Wavejets::Processing_report& report, std::size_t tile_points)
   {
     Point_set ps;
     ps.add_normal_map();
-    ps.reserve(points.size());
-    for(const Record& r : points)
-      ps.insert(Point(r.position[0], r.position[1], r.position[2]), Vector(r.normal[0], r.normal[1], r.normal[2]));
+    ps.resize(points.size());
+    const bool input_normals = pass_ != Pass::BARE_NORMALS;   // else none: the normals are estimated
+    CGAL::for_each<Concurrency_tag>(CGAL::make_counting_range<std::size_t>(0, points.size()), [&](std::size_t i) {
+      const Record& r = points[i];
+      const Point_set::Index key(static_cast<Point_set::Index::size_type>(i));
+      ps.point(key) = Point(r.position[0], r.position[1], r.position[2]);
+      ps.normal(key) = input_normals ? Vector(r.normal[0], r.normal[1], r.normal[2]) : CGAL::NULL_VECTOR;
+      return true;
+    });
     const Output_columns columns = add_output_columns(ps, s_.command);
     In_tile tiling{CGAL::Wavejets::Tile{extent, in_.bounds}, ps.add_property_map<unsigned char>("owned", 0).first,
                    ps.add_property_map<unsigned char>("outside", 0).first};
-    const std::vector<Point_set::Index> keys(ps.begin(), ps.end());
-    std::vector<Point_set::Index> target_keys;
-    {
-      std::size_t j = 0;
-      for(std::size_t i = 0; i < points.size() && j < targets.size(); ++i)
-        if(points[i].index == targets[j].index) {
-          tiling.owned[keys[i]] = 1;
-          target_keys.push_back(keys[i]);
-          ++j;
-        }
-      if(j != targets.size()) throw std::logic_error("streamed run: a tile's point is missing from its own extent");
-    }
+    auto key = [](std::size_t i) { return Point_set::Index(static_cast<Point_set::Index::size_type>(i)); };
+    for(std::size_t i : targets) tiling.owned[key(i)] = 1;
     const double base = double(done_points_);
     const Callback cb = [&](double x) { return progress_((base + x * double(tile_points)) / double(in_.count)); };
     CGAL::Wavejets::Processing_report r;
@@ -573,23 +656,23 @@ private:
     else r = estimate_normals_of_result(ps, s_, cb, tiling);
     if(r.interrupted) throw File_error("interrupted");
     add_report(report, r);
-    std::vector<Record> outside;
+    const bool writes_fitted = pass_ == Pass::COMMAND || (pass_ == Pass::BARE_NORMALS && s_.command == NORMALS);
+    std::vector<Pending> outside;
     for(std::size_t j = 0; j < targets.size(); ++j) {
-      const Point_set::Index i = target_keys[j];
-      if(tiling.outside[i]) { outside.push_back(targets[j]); continue; }
-      Result out = Result();
-      out.record = targets[j];
-      Record& r = out.record;
+      const Point_set::Index i = key(targets[j]);
+      if(tiling.outside[i]) { outside.push_back(Pending{points[targets[j]], slots[j]}); continue; }
+      Result out;
+      out.record = points[targets[j]];
+      Record& rec = out.record;
       const Vector& n = ps.normal(i);
-      r.normal[0] = n.x(); r.normal[1] = n.y(); r.normal[2] = n.z();
-      const bool writes_fitted = pass_ == Pass::COMMAND || (pass_ == Pass::BARE_NORMALS && s_.command == NORMALS);
-      if(writes_fitted) r.fitted = columns.fitted[i];
+      rec.normal[0] = n.x(); rec.normal[1] = n.y(); rec.normal[2] = n.z();
+      if(writes_fitted) rec.fitted = columns.fitted[i];
       if(pass_ == Pass::COMMAND) {
         const Point& p = ps.point(i);
-        r.position[0] = p.x(); r.position[1] = p.y(); r.position[2] = p.z();
+        rec.position[0] = p.x(); rec.position[1] = p.y(); rec.position[2] = p.z();
         for(std::size_t c = 0; c < columns.curvature.size(); ++c) out.curvature[c] = columns.curvature[c][i];
       }
-      results.push_back(out);
+      std::memcpy(&results_[slots[j] * result_bytes_], &out, result_bytes_);
     }
     return outside;
   }
@@ -607,6 +690,8 @@ private:
   std::vector<CGAL::Bbox_3> tile_box_;   // of each tile's points
   std::unique_ptr<Scratch_file> bins_;
   std::uint64_t done_points_ = 0, rerun_ = 0;
+  std::vector<char> results_;      // of the current tile, result_bytes_ each, in index order
+  std::size_t result_bytes_ = sizeof(Record);
 };
 
 // Chunks of at most this many points are read and written at a time.
@@ -621,29 +706,39 @@ Record_file scan(const std::string& in_path, const std::string& near, const Fit_
   Record_file f;
   f.file.reset(new Scratch_file(near));
   Record_stream writer(*f.file, sizeof(Record), 0, std::numeric_limits<std::uint64_t>::max());
-  Point_set chunk;
   bool all_same = true, any_normal = false;
-  Point first_point(0, 0, 0);
-  while(chunks.next(chunk, chunk_points)) {
-    for(Point_set::Index i : chunk) {
-      const Point& p = chunk.point(i);
-      if(!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z()))
-        throw File_error(in_path + ": point " + std::to_string(f.count) + " has a NaN or infinite coordinate (remove such points first)");
-      Record r;
-      std::memset(&r, 0, sizeof r);
-      r.index = f.count;
-      r.position[0] = p.x(); r.position[1] = p.y(); r.position[2] = p.z();
-      if(chunk.has_normal_map()) {
-        const Vector& n = chunk.normal(i);
-        r.normal[0] = n.x(); r.normal[1] = n.y(); r.normal[2] = n.z();
-        any_normal = any_normal || (std::isfinite(n.squared_length()) && n.squared_length() > 0);
-      }
-      const CGAL::Bbox_3 b = p.bbox();
-      if(f.count == 0) { first_point = p; f.bounds = b; }
-      else { f.bounds += b; all_same = all_same && p == first_point; }
-      writer.put(&r);
-      ++f.count;
+  double first_point[3] = {0, 0, 0};
+  auto add = [&](double x, double y, double z, const double* normal) {
+    if(!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z))
+      throw File_error(in_path + ": point " + std::to_string(f.count) + " has a NaN or infinite coordinate (remove such points first)");
+    Record r;
+    std::memset(&r, 0, sizeof r);
+    r.index = f.count;
+    r.position[0] = x; r.position[1] = y; r.position[2] = z;
+    if(normal) {
+      r.normal[0] = normal[0]; r.normal[1] = normal[1]; r.normal[2] = normal[2];
+      const double l = normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2];
+      any_normal = any_normal || (std::isfinite(l) && l > 0);
     }
+    const CGAL::Bbox_3 b(x, y, z, x, y, z);
+    if(f.count == 0) { first_point[0] = x; first_point[1] = y; first_point[2] = z; f.bounds = b; }
+    else { f.bounds += b; all_same = all_same && x == first_point[0] && y == first_point[1] && z == first_point[2]; }
+    writer.put(&r);
+    ++f.count;
+  };
+  if(chunks.reads_directly()) {
+    std::vector<double> v;
+    while(chunks.next_values(v, chunk_points))
+      for(std::size_t i = 0; i < v.size(); i += 6) add(v[i], v[i + 1], v[i + 2], chunks.has_normals() ? &v[i + 3] : nullptr);
+  } else {
+    Point_set chunk;
+    while(chunks.next(chunk, chunk_points))
+      for(Point_set::Index i : chunk) {
+        const Point& p = chunk.point(i);
+        const Vector n = chunk.has_normal_map() ? chunk.normal(i) : CGAL::NULL_VECTOR;
+        const double normal[3] = {n.x(), n.y(), n.z()};
+        add(p.x(), p.y(), p.z(), chunk.has_normal_map() ? normal : nullptr);
+      }
   }
   writer.flush();
   if(f.count == 0) throw File_error(in_path + ": contains no points");
@@ -657,19 +752,8 @@ Record_file scan(const std::string& in_path, const std::string& near, const Fit_
       throw File_error(in_path + ": has no normals; a streamed run orients estimated normals toward a viewpoint: give "
                        "--orient-toward X,Y,Z (e.g. the scanner's position), or process it in memory (no --max-memory / "
                        "--tile-size: oriented by a minimum spanning tree)");
-    // Normals that are all zero or not finite count as none, as in core.
-    Record_file clean;
-    clean.file.reset(new Scratch_file(near));
-    clean.count = f.count;
-    clean.bounds = f.bounds;
-    Record_stream reader(*f.file, sizeof(Record), 0, f.count), out(*clean.file, sizeof(Record), 0, f.count);
-    while(!reader.done()) {
-      Record r = reader.take().record;
-      r.normal[0] = r.normal[1] = r.normal[2] = 0.;
-      out.put(&r);
-    }
-    out.flush();
-    f = std::move(clean);
+    // Normals that are all zero or not finite count as none, as in core: the records keep them,
+    // the first pass (Pass::BARE_NORMALS) does not read them.
   }
   f.runs.emplace_back(0, f.count);
   log.scan_seconds = seconds_since(t0);

@@ -226,24 +226,29 @@ Tile_input make_tile_input(const Input& input, const Tiling& tiling, const std::
   return tile;
 }
 
-/// The first halo of a tile of `count` points in `box`: `tile_halo` if given; with a search radius,
-/// that radius (no reach exceeds it); else 1.5 times the radius of a disk holding k + 1 points at
-/// the tile's density, taking its points as a surface across the two longest sides of their box.
-/// Twice that with `estimated_normals` (the neighbors' normals of a Hermite fit, whose fits reach one
+/// The halo that holds the neighborhoods of most of `count` points in a box of sides `extent`: with
+/// a search radius, that radius (no reach exceeds it); else 1.5 times the radius of a disk holding
+/// k + 1 points at their density, taking them as a surface across the two longest sides of the box
+/// (0 if the box is a point). Also the first halo of the `wavejets` tool's streamed tiles.
+inline double estimated_halo(const double extent[3], std::size_t count, unsigned int k, double neighbor_radius)
+{
+  if(neighbor_radius > 0) return neighbor_radius * (1. + 1e-6);
+  double e[3] = {extent[0], extent[1], extent[2]};
+  std::sort(e, e + 3);
+  const double points = double(k + 1), pi = 3.14159265358979323846;
+  if(e[1] > 0) return 1.5 * std::sqrt(points * e[2] * e[1] / (pi * double(count)));
+  if(e[2] > 0) return 1.5 * e[2] * points / (2. * double(count));
+  return 0.;
+}
+
+/// The first halo of a tile of `count` points in `box`: `tile_halo` if given, else estimated_halo();
+/// twice that with `estimated_normals` (the neighbors' normals of a Hermite fit, whose fits reach one
 /// neighborhood further).
 inline double first_halo(const Box& box, std::size_t count, const Driver_settings& s, bool estimated_normals)
 {
   if(s.tile_halo > 0) return s.tile_halo;
-  double r = 0.;
-  if(s.neighbor_radius > 0) r = s.neighbor_radius * (1. + 1e-6);
-  else
-  {
-    double e[3] = {box.extent(0), box.extent(1), box.extent(2)};
-    std::sort(e, e + 3);
-    const double points = double(s.k + 1), pi = 3.14159265358979323846;
-    if(e[1] > 0) r = 1.5 * std::sqrt(points * e[2] * e[1] / (pi * double(count)));
-    else if(e[2] > 0) r = 1.5 * e[2] * points / (2. * double(count));
-  }
+  const double extent[3] = {box.extent(0), box.extent(1), box.extent(2)};
+  const double r = estimated_halo(extent, count, s.k, s.neighbor_radius);
   return estimated_normals ? 2. * r : r;
 }
 
