@@ -4,10 +4,12 @@
 # libjs-mathjax typesets its formulas offline (its files are copied into the built manual);
 # clang is the compiler of the CGAL 6.1.1 leg of scripts/test.sh; xz-utils unpacks that release.
 # The Python module (python/) builds with pybind11 against Debian's python3 and NumPy; its tests run
-# with pytest; python3-venv serves the offline install (scripts/install_python.sh).
+# with pytest; python3-venv serves the offline install (scripts/install_python.sh); wavejets.distributed
+# (the streamed steps as Dask tasks) and its tests use python3-dask and python3-distributed.
 set -euo pipefail
 packages="g++ clang cmake make xz-utils libcgal-dev libeigen3-dev libtbb-dev libboost-dev libpng-dev doxygen
-  libjs-mathjax python3-dev python3-venv python3-numpy pybind11-dev python3-pybind11 python3-pytest"
+  libjs-mathjax python3-dev python3-venv python3-numpy pybind11-dev python3-pybind11 python3-pytest python3-dask
+  python3-distributed"
 missing=""
 for p in $packages; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"

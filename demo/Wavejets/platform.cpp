@@ -7,12 +7,16 @@
 #include <cstdlib>
 #include <cstring>
 #include <random>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 #include <stdexcept>
 
 #if defined(_WIN32)
 #include <io.h>
 #else
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 #endif
 
@@ -91,6 +95,42 @@ Scratch_file::Scratch_file(const std::string& near)
   const int error = errno;
   ::unlink(name.c_str());
   if(fd_ < 0) throw std::runtime_error("cannot open a scratch file in " + dir + " (" + std::strerror(error) + ")");
+#endif
+}
+
+void keep_freed_memory_for_reuse()
+{
+#if defined(__GLIBC__)
+  mallopt(M_MMAP_THRESHOLD, 32 << 20);
+  mallopt(M_TRIM_THRESHOLD, 1 << 30);
+#endif
+}
+
+Scratch_file* Scratch_file::open_named(const std::string& path)
+{
+  Scratch_file* f = new Scratch_file();
+#if !defined(_WIN32)
+  f->fd_ = ::open(path.c_str(), O_RDWR);
+  if(f->fd_ < 0) {
+    const int error = errno;
+    delete f;
+    throw std::runtime_error("cannot open " + path + " (" + std::strerror(error) + ")");
+  }
+#else
+  delete f;
+  throw std::runtime_error("staged runs need a POSIX system");
+#endif
+  return f;
+}
+
+std::uint64_t Scratch_file::size() const
+{
+#if !defined(_WIN32)
+  struct stat st;
+  if(::fstat(fd_, &st) != 0) throw std::runtime_error(std::string("cannot read a scratch file (") + std::strerror(errno) + ")");
+  return std::uint64_t(st.st_size);
+#else
+  return 0;
 #endif
 }
 

@@ -18,6 +18,12 @@ bool stderr_is_terminal();
 /// name. Throws std::runtime_error if the folder does not take new files.
 std::string create_unique_file(const std::string& prefix);
 
+/// For a process that allocates and frees buffers of megabytes again and again (the tool's streamed
+/// passes): memory freed is kept for the next allocation instead of being returned to the system
+/// and faulted in again (glibc: allocations up to 32 MB from the heap, no trimming below 1 GB).
+/// Measured on a streamed run's writing step: 9.6 s -> 4.1 s at 10^7 points. Elsewhere: nothing.
+void keep_freed_memory_for_reuse();
+
 /// On SIGINT and SIGTERM: removes the file named in `path` (if not empty), prints that nothing was
 /// written, and exits with 128 + the signal number. `path` must stay valid; it is read by the handler.
 void remove_on_interrupt(const char* path);
@@ -30,12 +36,17 @@ class Scratch_file
 {
 public:
   explicit Scratch_file(const std::string& near);
+  /// A named file of a staged streamed run (wavejets.distributed), opened for reading and writing
+  /// and left in place.
+  static Scratch_file* open_named(const std::string& path);
   ~Scratch_file();
   Scratch_file(const Scratch_file&) = delete;
   Scratch_file& operator=(const Scratch_file&) = delete;
   void write(const void* data, std::size_t bytes, std::uint64_t offset);
   void read(void* data, std::size_t bytes, std::uint64_t offset) const;
+  std::uint64_t size() const;
 private:
+  Scratch_file() = default;
   int fd_ = -1;
 };
 

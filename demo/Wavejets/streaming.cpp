@@ -21,6 +21,7 @@
 #include <CGAL/for_each.h>
 
 #ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/global_control.h>
 #include <tbb/parallel_sort.h>
 #endif
 
@@ -285,13 +286,19 @@ private:
   bool loaded_ = false;
 };
 
-// The records of a pass, in a scratch file: runs, each in index order (one run per tile).
+// Records [first, end) of a file, in index order.
+struct Record_run
+{
+  std::shared_ptr<Scratch_file> file;
+  std::uint64_t first = 0, end = 0;
+};
+
+// The records of a pass: runs (the scan's one, then one per tile), each in index order.
 struct Record_file
 {
-  std::unique_ptr<Scratch_file> file;
   std::size_t bytes = sizeof(Record);   // of each record
   std::uint64_t count = 0;
-  std::vector<std::pair<std::uint64_t, std::uint64_t> > runs;   // [first, end) of each run
+  std::vector<Record_run> runs;
   CGAL::Bbox_3 bounds;
 };
 
@@ -381,55 +388,157 @@ void sort_by_index(std::vector<Record>& records)
 // ------------------------------------------------------------------------------------------------
 enum class Pass { BARE_NORMALS, COMMAND, RESULT_NORMALS };
 
+// Whether the run may use more than one thread (not with --threads 1: a sequential run).
+bool more_than_one_thread()
+{
+#ifdef CGAL_LINKED_WITH_TBB
+  return tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism) > 1;
+#else
+  return false;
+#endif
+}
+
+// The passes of a run: normals of a point set without normals, the command (unless that was
+// all: normals), then for enhance-positions the normals of the moved points.
+std::vector<Pass> passes_of(const Fit_settings& s, bool had_normals)
+{
+  std::vector<Pass> passes;
+  if(!had_normals) passes.push_back(Pass::BARE_NORMALS);
+  if(s.command != NORMALS || had_normals) passes.push_back(Pass::COMMAND);
+  if(s.command == POSITIONS) passes.push_back(Pass::RESULT_NORMALS);
+  return passes;
+}
+
+void add_pass_report(Streamed_run& log, Pass pass, const CGAL::Wavejets::Processing_report& r, std::uint64_t rerun, std::size_t tiles)
+{
+  log.rerun_points += std::size_t(rerun);
+  if(pass == Pass::COMMAND) log.tiles = tiles;
+  std::optional<CGAL::Wavejets::Processing_report>& slot =
+    pass == Pass::BARE_NORMALS ? log.bare_normals : pass == Pass::COMMAND ? log.command : log.result_normals;
+  if(!slot) slot = r;
+  else add_report(*slot, r);
+}
+
+// A whole small file (a staged run's plan), written under a temporary name and renamed.
+void write_whole_file(const std::string& path, const std::string& bytes)
+{
+  Output_file out(path);
+  {
+    std::ofstream os(out.temporary_path(), std::ios::binary);
+    os.write(bytes.data(), std::streamsize(bytes.size()));
+    os.close();
+    if(!os) throw std::runtime_error("cannot write " + path);
+  }
+  out.commit();
+}
+std::string read_whole_file(const std::string& path)
+{
+  std::ifstream is(path, std::ios::binary);
+  if(!is) throw std::runtime_error("cannot read " + path + " (" + std::strerror(errno) + ")");
+  std::ostringstream s;
+  s << is.rdbuf();
+  return s.str();
+}
+
 class Streamed_pass
 {
 public:
-  Streamed_pass(const Record_file& in, Pass pass, const Fit_settings& s, std::size_t tile_size, const std::string& near,
-                const std::function<bool(double)>& progress)
-    : in_(in), pass_(pass), s_(s), tile_size_(tile_size), near_(near), progress_(progress) {}
+  Streamed_pass(Pass pass, const Fit_settings& s, std::size_t tile_size, const std::function<bool(double)>& progress)
+    : pass_(pass), s_(s), tile_size_(tile_size), progress_(progress) {}
 
-  // Bins the records by tile, runs the tiles, returns their records.
-  Record_file run(Streamed_run& log)
+  // Bins the records by tile into a scratch file near `near`, runs the tiles, returns their records.
+  Record_file run(const Record_file& in, const std::string& near, Streamed_run& log)
   {
     const Clock::time_point t0 = Clock::now();
-    bin();
+    bin(in, std::make_shared<Scratch_file>(near));
     log.binning_seconds += seconds_since(t0);
     const Clock::time_point t1 = Clock::now();
     Record_file out;
-    out.file.reset(new Scratch_file(near_));
-    out.count = in_.count;
-    out.bytes = pass_ == Pass::COMMAND ? result_bytes(s_.command) : sizeof(Record);
+    const std::shared_ptr<Scratch_file> file = std::make_shared<Scratch_file>(near);
+    out.count = count_;
+    out.bytes = output_bytes();
     CGAL::Wavejets::Processing_report report;
-    // The next tile's points are read while the current one is fitted.
-    std::future<Gathered> next = std::async(std::launch::async, [this] { return gather(0); });
+    // With more than one thread, the next tile's points are read while the current one is fitted.
+    const std::launch gathering = more_than_one_thread() ? std::launch::async : std::launch::deferred;
+    std::future<Gathered> next = std::async(gathering, [this] { return gather(0); });
     std::uint64_t written = 0;
     for(std::size_t t = 0; t < tiles_.size(); ++t) {
       const Gathered tile = next.get();
-      if(t + 1 < tiles_.size()) next = std::async(std::launch::async, [this, t] { return gather(t + 1); });
-      run_tile(tile, out.bytes, report);
+      if(t + 1 < tiles_.size()) next = std::async(gathering, [this, t] { return gather(t + 1); });
+      run_tile(tile, report);
       const std::size_t n = tile.targets.size();
-      for(std::size_t i = 0; i < n; ++i) {
-        const double* p = reinterpret_cast<const Record*>(&results_[i * out.bytes])->position;
-        out.bounds += CGAL::Bbox_3(p[0], p[1], p[2], p[0], p[1], p[2]);
-      }
-      out.file->write(results_.data(), n * out.bytes, written * out.bytes);
-      out.runs.emplace_back(written, written + n);
+      out.bounds += results_bounds(n);
+      file->write(results_.data(), n * out.bytes, written * out.bytes);
+      out.runs.push_back(Record_run{file, written, written + n});
       written += n;
     }
     log.fit_seconds += seconds_since(t1);
-    log.rerun_points += rerun_;
-    if(pass_ == Pass::COMMAND) log.tiles = tiles_.size();
-    (pass_ == Pass::BARE_NORMALS ? log.bare_normals : pass_ == Pass::COMMAND ? log.command : log.result_normals) = report;
+    add_pass_report(log, pass_, report, rerun_, tiles_.size());
     return out;
   }
 
-private:
-  void bin()
+  std::size_t output_bytes() const { return pass_ == Pass::COMMAND ? result_bytes(s_.command) : sizeof(Record); }
+  std::size_t number_of_tiles() const { return tiles_.size(); }
+
+  // A staged run (staged_*()): the plan of the pass (what bin() decided), saved next to its bins.
+  void save_plan(const std::string& path) const
   {
-    grid_ = make_grid(in_.bounds, in_.count, tile_size_);
+    std::string b;
+    auto pod = [&](const auto& v) { b.append(reinterpret_cast<const char*>(&v), sizeof v); };
+    auto vec = [&](const auto& v) {
+      pod(std::uint64_t(v.size()));
+      if(!v.empty()) b.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(v[0]));
+    };
+    pod(plan_magic); pod(count_); pod(bounds_); pod(grid_);
+    vec(tiles_); vec(cell_first_); vec(cell_count_); vec(tile_first_); vec(tile_of_); vec(tile_box_);
+    write_whole_file(path, b);
+  }
+  void load_plan(const std::string& path, std::shared_ptr<Scratch_file> bins)
+  {
+    const std::string b = read_whole_file(path);
+    std::size_t at = 0;
+    auto pod = [&](auto& v) {
+      if(at + sizeof v > b.size()) throw std::runtime_error(path + ": truncated");
+      std::memcpy(&v, b.data() + at, sizeof v);
+      at += sizeof v;
+    };
+    auto vec = [&](auto& v) {
+      std::uint64_t n = 0;
+      pod(n);
+      if(at + n * sizeof(v[0]) > b.size()) throw std::runtime_error(path + ": truncated");
+      v.resize(std::size_t(n));
+      if(n) std::memcpy(v.data(), b.data() + at, std::size_t(n) * sizeof(v[0]));
+      at += std::size_t(n) * sizeof(v[0]);
+    };
+    std::uint64_t magic = 0;
+    pod(magic);
+    if(magic != plan_magic) throw std::runtime_error(path + ": not a pass plan of this version");
+    pod(count_); pod(bounds_); pod(grid_);
+    vec(tiles_); vec(cell_first_); vec(cell_count_); vec(tile_first_); vec(tile_of_); vec(tile_box_);
+    bins_ = std::move(bins);
+  }
+
+  // A staged run: tile `t` alone. Its results (`output_bytes()` each, in index order), then its report.
+  std::string run_one_tile(std::size_t t, CGAL::Wavejets::Processing_report& report, std::uint64_t& rerun, CGAL::Bbox_3& bounds)
+  {
+    if(t >= tiles_.size()) throw std::runtime_error("no tile " + std::to_string(t) + " (" + std::to_string(tiles_.size()) + " tiles)");
+    const Gathered tile = gather(t);
+    run_tile(tile, report);
+    rerun = rerun_;
+    bounds = results_bounds(tile.targets.size());
+    return std::string(results_.data(), tile.targets.size() * output_bytes());
+  }
+
+  // Sorts the records of `in` into bins by cell, tile after tile, in `bins`; decides the tiles.
+  void bin(const Record_file& in, std::shared_ptr<Scratch_file> bins)
+  {
+    count_ = in.count;
+    bounds_ = in.bounds;
+    bins_ = std::move(bins);
+    grid_ = make_grid(bounds_, count_, tile_size_);
     std::vector<std::uint64_t> counts(grid_.size(), 0);
-    for_each_input([&](const Record& r) { ++counts[grid_.cell_of(r.position)]; });
-    Cell_box all{{0, 0, 0}, {grid_.n[0], grid_.n[1], grid_.n[2]}, in_.count};
+    for_each_input(in, [&](const Record& r) { ++counts[grid_.cell_of(r.position)]; });
+    Cell_box all{{0, 0, 0}, {grid_.n[0], grid_.n[1], grid_.n[2]}, count_};
     split_tiles(grid_, counts, all, tile_size_, tiles_);
     // Cells in tile order: a tile's records are contiguous in the bins, each cell's too.
     cell_first_.assign(grid_.size(), 0);
@@ -450,7 +559,6 @@ private:
     }
     tile_first_.push_back(next);
     cell_count_ = std::move(counts);
-    bins_.reset(new Scratch_file(near_));
     // Each tile buffers its records, then writes them at their cells' next places.
     // 64 MB of buffers in all, at least 64 records per tile.
     const std::size_t per_tile = std::max<std::size_t>(64, (std::size_t(64) << 20) / sizeof(Record) / tiles_.size());
@@ -472,7 +580,7 @@ private:
       }
       buffer.clear();
     };
-    for_each_input([&](const Record& r) {
+    for_each_input(in, [&](const Record& r) {
       const std::uint32_t t = tile_of[grid_.cell_of(r.position)];
       tile_box_[t] += CGAL::Bbox_3(r.position[0], r.position[1], r.position[2], r.position[0], r.position[1], r.position[2]);
       std::vector<Record>& buffer = buffers[t];
@@ -483,10 +591,25 @@ private:
     for(std::vector<Record>& buffer : buffers) flush(buffer);
   }
 
-  template <class F> void for_each_input(const F& f)
+private:
+  static constexpr std::uint64_t plan_magic = 0x57564a5053504c31ull;   // "WVJPSPL1"
+
+  template <class F> static void for_each_input(const Record_file& in, const F& f)
   {
-    Record_stream reader(*in_.file, in_.bytes, 0, in_.count);
-    while(!reader.done()) f(reader.take().record);
+    for(const Record_run& run : in.runs) {
+      Record_stream reader(*run.file, in.bytes, run.first, run.end);
+      while(!reader.done()) f(reader.take().record);
+    }
+  }
+
+  CGAL::Bbox_3 results_bounds(std::size_t n) const
+  {
+    CGAL::Bbox_3 b;
+    for(std::size_t i = 0; i < n; ++i) {
+      const double* p = reinterpret_cast<const Record*>(&results_[i * result_bytes_])->position;
+      b += CGAL::Bbox_3(p[0], p[1], p[2], p[0], p[1], p[2]);
+    }
+    return b;
   }
 
   // The records of the points in the closed box `extent`, in index order.
@@ -536,9 +659,9 @@ private:
   {
     const double extent[3] = {box.xmax() - box.xmin(), box.ymax() - box.ymin(), box.zmax() - box.zmin()};
     const double h = CGAL::Wavejets::internal::estimated_halo(extent, count, s_.k, s_.radius);
-    const double diagonal = std::sqrt(CGAL::square(in_.bounds.xmax() - in_.bounds.xmin()) +
-                                      CGAL::square(in_.bounds.ymax() - in_.bounds.ymin()) +
-                                      CGAL::square(in_.bounds.zmax() - in_.bounds.zmin()));
+    const double diagonal = std::sqrt(CGAL::square(bounds_.xmax() - bounds_.xmin()) +
+                                      CGAL::square(bounds_.ymax() - bounds_.ymin()) +
+                                      CGAL::square(bounds_.zmax() - bounds_.zmin()));
     return h > 0 ? h : 1e-6 * diagonal;
   }
 
@@ -576,11 +699,11 @@ private:
 
   // Writes the records (`bytes` of each Result) of the tile's points after the pass to results_, in
   // index order.
-  void run_tile(const Gathered& tile, std::size_t bytes, CGAL::Wavejets::Processing_report& report)
+  void run_tile(const Gathered& tile, CGAL::Wavejets::Processing_report& report)
   {
     const std::size_t tile_points = tile.targets.size();
-    results_.resize(tile_points * bytes);   // reused from tile to tile
-    result_bytes_ = bytes;
+    result_bytes_ = output_bytes();
+    results_.resize(tile_points * result_bytes_);   // reused from tile to tile
     std::vector<std::size_t> slots(tile_points);
     std::iota(slots.begin(), slots.end(), std::size_t(0));
     std::vector<Pending> outside = fit_targets(tile.points, tile.targets, slots, tile.extent, report, tile_points);
@@ -642,12 +765,12 @@ private:
       return true;
     });
     const Output_columns columns = add_output_columns(ps, s_.command);
-    In_tile tiling{CGAL::Wavejets::Tile{extent, in_.bounds}, ps.add_property_map<unsigned char>("owned", 0).first,
+    In_tile tiling{CGAL::Wavejets::Tile{extent, bounds_}, ps.add_property_map<unsigned char>("owned", 0).first,
                    ps.add_property_map<unsigned char>("outside", 0).first};
     auto key = [](std::size_t i) { return Point_set::Index(static_cast<Point_set::Index::size_type>(i)); };
     for(std::size_t i : targets) tiling.owned[key(i)] = 1;
     const double base = double(done_points_);
-    const Callback cb = [&](double x) { return progress_((base + x * double(tile_points)) / double(in_.count)); };
+    const Callback cb = [&](double x) { return progress_((base + x * double(tile_points)) / double(count_)); };
     CGAL::Wavejets::Processing_report r;
     if(pass_ == Pass::BARE_NORMALS)
       r = estimate_normals_of_bare_points(ps, s_, s_.command == NORMALS ? s_.order : 2,
@@ -677,18 +800,18 @@ private:
     return outside;
   }
 
-  const Record_file& in_;
   Pass pass_;
   const Fit_settings& s_;
   std::size_t tile_size_;
-  std::string near_;
   std::function<bool(double)> progress_;
+  std::uint64_t count_ = 0;   // points of the pass
+  CGAL::Bbox_3 bounds_;       // of all of them
   Grid grid_;
   std::vector<Cell_box> tiles_;
   std::vector<std::uint64_t> cell_first_, cell_count_, tile_first_;
   std::vector<std::uint32_t> tile_of_;   // per cell
   std::vector<CGAL::Bbox_3> tile_box_;   // of each tile's points
-  std::unique_ptr<Scratch_file> bins_;
+  std::shared_ptr<Scratch_file> bins_;
   std::uint64_t done_points_ = 0, rerun_ = 0;
   std::vector<char> results_;      // of the current tile, result_bytes_ each, in index order
   std::size_t result_bytes_ = sizeof(Record);
@@ -698,14 +821,13 @@ private:
 const std::size_t chunk_points = 1 << 16;
 
 // Pass 1: the input's points as records, checked as the in-core reader checks them.
-Record_file scan(const std::string& in_path, const std::string& near, const Fit_settings& s, Streamed_run& log)
+Record_file scan(const std::string& in_path, const std::shared_ptr<Scratch_file>& file, const Fit_settings& s, Streamed_run& log)
 {
   const Clock::time_point t0 = Clock::now();
   Input_chunks chunks(in_path);
   log.format = chunks.format();
   Record_file f;
-  f.file.reset(new Scratch_file(near));
-  Record_stream writer(*f.file, sizeof(Record), 0, std::numeric_limits<std::uint64_t>::max());
+  Record_stream writer(*file, sizeof(Record), 0, std::numeric_limits<std::uint64_t>::max());
   bool all_same = true, any_normal = false;
   double first_point[3] = {0, 0, 0};
   auto add = [&](double x, double y, double z, const double* normal) {
@@ -755,7 +877,7 @@ Record_file scan(const std::string& in_path, const std::string& near, const Fit_
     // Normals that are all zero or not finite count as none, as in core: the records keep them,
     // the first pass (Pass::BARE_NORMALS) does not read them.
   }
-  f.runs.emplace_back(0, f.count);
+  f.runs.push_back(Record_run{file, 0, f.count});
   log.scan_seconds = seconds_since(t0);
   return f;
 }
@@ -764,12 +886,12 @@ Record_file scan(const std::string& in_path, const std::string& near, const Fit_
 class Record_merge
 {
 public:
-  explicit Record_merge(Record_file& f)
+  explicit Record_merge(const Record_file& f)
   {
     const std::size_t bytes = f.bytes;
     // 32 MB of buffers in all, at least 64 records per run.
     const std::size_t buffered = std::max<std::size_t>(64, (std::size_t(32) << 20) / bytes / std::max<std::size_t>(1, f.runs.size()));
-    for(const auto& run : f.runs) streams_.emplace_back(new Record_stream(*f.file, bytes, run.first, run.second, buffered));
+    for(const Record_run& run : f.runs) streams_.emplace_back(new Record_stream(*run.file, bytes, run.first, run.end, buffered));
   }
   void next(std::uint64_t first, std::vector<Result>& out)
   {
@@ -795,29 +917,34 @@ std::size_t tile_size_for_memory(double bytes)
 
 namespace {
 
+void write_output(const std::string& in_path, const std::string& out_path, const Fit_settings& s,
+                  const Streaming_settings& settings, const Record_file& records, Streamed_run& log, const Callback& progress);
+
 Streamed_run run(const std::string& in_path, const std::string& out_path, const Fit_settings& s,
                  const Streaming_settings& settings, const Callback& progress)
 {
   Streamed_run log;
   if(output_format(out_path) != Output_format::PLY)
     throw File_error(out_path + ": a streamed run writes a .ply file");
-  Record_file records = scan(in_path, out_path, s, log);
-  const int passes = (log.had_normals ? 0 : 1) + (s.command == NORMALS && !log.had_normals ? 0 : 1) + (s.command == POSITIONS ? 1 : 0);
-  int pass_index = 0;
+  Record_file records = scan(in_path, std::make_shared<Scratch_file>(out_path), s, log);
+  const std::vector<Pass> passes = passes_of(s, log.had_normals);
+  std::size_t pass_index = 0;
   auto pass_progress = [&](double x) {   // the whole run: scan 5%, passes 85%, writing 10%
-    return progress(0.05 + 0.85 * (double(pass_index) + std::min(1., x)) / double(passes));
+    return progress(0.05 + 0.85 * (double(pass_index) + std::min(1., x)) / double(passes.size()));
   };
-  auto run_pass = [&](Pass p) {
-    Streamed_pass pass(records, p, s, settings.tile_size, out_path, pass_progress);
-    Record_file next = pass.run(log);
+  for(; pass_index < passes.size(); ++pass_index) {
+    Streamed_pass pass(passes[pass_index], s, settings.tile_size, pass_progress);
+    Record_file next = pass.run(records, out_path, log);
     records = std::move(next);
-    ++pass_index;
-  };
-  if(!log.had_normals) run_pass(Pass::BARE_NORMALS);
-  if(s.command != NORMALS || log.had_normals) run_pass(Pass::COMMAND);
-  if(s.command == POSITIONS) run_pass(Pass::RESULT_NORMALS);
+  }
+  write_output(in_path, out_path, s, settings, records, log, progress);
+  return log;
+}
 
-  // Writing: the input again, chunk by chunk, with the records' values.
+// Writing: the input again, chunk by chunk, with the records' values.
+void write_output(const std::string& in_path, const std::string& out_path, const Fit_settings& s,
+                  const Streaming_settings& settings, const Record_file& records, Streamed_run& log, const Callback& progress)
+{
   const Clock::time_point tw = Clock::now();
   Output_file out(out_path);
   {
@@ -868,10 +995,187 @@ Streamed_run run(const std::string& in_path, const std::string& out_path, const 
   }
   out.commit();
   log.write_seconds = seconds_since(tw);
-  return log;
 }
 
 } // namespace
+
+namespace {
+
+// ------------------------------------------------------------------------------------------------
+// Staged runs: the files of a job folder.
+//   run            what the scan found (text: format, points, normals, passes)
+//   records        the scan's records
+//   pass-P.bins    the records of pass P binned by cell; pass-P.plan: the tiles; pass-P.tiles: their number (text)
+//   pass-P.tile-T  the results of tile T of pass P (in index order), then a Tile_trailer
+// Every file is written under a temporary name and renamed when complete: a step run twice (a
+// worker lost and its task run again) writes the same file again.
+std::string job_path(const std::string& job, const std::string& name) { return job + "/" + name; }
+std::string pass_path(const std::string& job, std::size_t pass, const std::string& what)
+{
+  return job_path(job, "pass-" + std::to_string(pass) + "." + what);
+}
+
+struct Tile_trailer
+{
+  CGAL::Wavejets::Processing_report report;
+  std::uint64_t rerun = 0, count = 0, bytes = 0;
+  CGAL::Bbox_3 bounds;
+  std::uint64_t magic = 0x57564a5454494c31ull;   // "WVJTTIL1"
+};
+
+struct Job_info
+{
+  std::string format;
+  std::uint64_t points = 0;
+  bool had_normals = false;
+};
+
+Job_info read_job(const std::string& job)
+{
+  std::istringstream is(read_whole_file(job_path(job, "run")));
+  Job_info info;
+  std::string key;
+  while(is >> key) {
+    if(key == "format") is >> info.format;
+    else if(key == "points") is >> info.points;
+    else if(key == "normals") is >> info.had_normals;
+    else is >> key;   // a value read for another key
+  }
+  if(info.format.empty()) throw std::runtime_error(job_path(job, "run") + ": not a job description");
+  return info;
+}
+
+// The results of every tile of `pass`, as the records of the next pass (or of the output); adds
+// the tiles' reports to `log`.
+Record_file tile_results(const std::string& job, const std::vector<Pass>& passes, std::size_t pass, Streamed_run& log)
+{
+  Record_file f;
+  const std::size_t tiles = staged_tiles(job, pass);
+  CGAL::Wavejets::Processing_report report;
+  std::uint64_t rerun = 0;
+  for(std::size_t t = 0; t < tiles; ++t) {
+    const std::string path = pass_path(job, pass, "tile-" + std::to_string(t));
+    std::shared_ptr<Scratch_file> file(Scratch_file::open_named(path));
+    Tile_trailer trailer;
+    const std::uint64_t size = file->size();
+    if(size < sizeof trailer) throw std::runtime_error(path + ": truncated");
+    file->read(&trailer, sizeof trailer, size - sizeof trailer);
+    if(trailer.magic != Tile_trailer().magic || size != trailer.count * trailer.bytes + sizeof trailer)
+      throw std::runtime_error(path + ": not the results of a tile");
+    f.bytes = std::size_t(trailer.bytes);
+    f.runs.push_back(Record_run{file, 0, trailer.count});
+    f.count += trailer.count;
+    f.bounds += trailer.bounds;
+    add_report(report, trailer.report);
+    rerun += trailer.rerun;
+  }
+  add_pass_report(log, passes[pass], report, rerun, tiles);
+  return f;
+}
+
+// Bins `in` for `pass` into the job folder.
+void bin_into_job(const std::string& job, std::size_t pass, Pass kind, const Record_file& in, const Fit_settings& s,
+                  const Streaming_settings& settings)
+{
+  Output_file bins(pass_path(job, pass, "bins"));
+  Streamed_pass p(kind, s, settings.tile_size, [](double) { return true; });
+  p.bin(in, std::shared_ptr<Scratch_file>(Scratch_file::open_named(bins.temporary_path())));
+  bins.commit();
+  p.save_plan(pass_path(job, pass, "plan"));
+  write_whole_file(pass_path(job, pass, "tiles"), std::to_string(p.number_of_tiles()) + "\n");
+}
+
+// Runs `f` and names the job folder in the scratch files' errors (a full disk).
+template <class F> auto in_job(const std::string& job, const F& f)
+{
+  try {
+    return f();
+  } catch(const File_error&) {
+    throw;
+  } catch(const std::runtime_error& e) {
+    throw File_error(job + ": " + e.what());
+  }
+}
+
+} // namespace
+
+std::size_t staged_prepare(const std::string& in_path, const std::string& out_path, const std::string& job,
+                           const Fit_settings& s, const Streaming_settings& settings)
+{
+  return in_job(job, [&] {
+    if(output_format(out_path) != Output_format::PLY) throw File_error(out_path + ": a streamed run writes a .ply file");
+    Streamed_run log;
+    Output_file records(job_path(job, "records"));
+    const std::shared_ptr<Scratch_file> file(Scratch_file::open_named(records.temporary_path()));
+    const Record_file scanned = scan(in_path, file, s, log);
+    records.commit();
+    const std::vector<Pass> passes = passes_of(s, log.had_normals);
+    bin_into_job(job, 0, passes[0], scanned, s, settings);
+    write_whole_file(job_path(job, "run"), "format " + log.format + "\npoints " + std::to_string(log.points) + "\nnormals " +
+                                           std::to_string(int(log.had_normals)) + "\npasses " + std::to_string(passes.size()) + "\n");
+    return passes.size();
+  });
+}
+
+std::size_t staged_tiles(const std::string& job, std::size_t pass)
+{
+  std::istringstream is(read_whole_file(pass_path(job, pass, "tiles")));
+  std::size_t n = 0;
+  if(!(is >> n)) throw std::runtime_error(pass_path(job, pass, "tiles") + ": no tile count");
+  return n;
+}
+
+void staged_tile(const std::string& job, std::size_t pass, std::size_t tile, const Fit_settings& s, const Streaming_settings& settings)
+{
+  in_job(job, [&] {
+    const std::vector<Pass> passes = passes_of(s, read_job(job).had_normals);
+    if(pass >= passes.size()) throw std::runtime_error("no pass " + std::to_string(pass));
+    Streamed_pass p(passes[pass], s, settings.tile_size, [](double) { return true; });
+    p.load_plan(pass_path(job, pass, "plan"), std::shared_ptr<Scratch_file>(Scratch_file::open_named(pass_path(job, pass, "bins"))));
+    Tile_trailer trailer;
+    std::string bytes;
+    try {
+      bytes = p.run_one_tile(tile, trailer.report, trailer.rerun, trailer.bounds);
+    } catch(const std::runtime_error& e) {
+      throw std::runtime_error("tile " + std::to_string(tile) + " of pass " + std::to_string(pass) + ": " + e.what());
+    }
+    trailer.bytes = p.output_bytes();
+    trailer.count = bytes.size() / trailer.bytes;
+    bytes.append(reinterpret_cast<const char*>(&trailer), sizeof trailer);
+    write_whole_file(pass_path(job, pass, "tile-" + std::to_string(tile)), bytes);
+    return 0;
+  });
+}
+
+void staged_bin(const std::string& job, std::size_t pass, const Fit_settings& s, const Streaming_settings& settings)
+{
+  in_job(job, [&] {
+    const std::vector<Pass> passes = passes_of(s, read_job(job).had_normals);
+    if(pass == 0 || pass >= passes.size()) throw std::runtime_error("no pass " + std::to_string(pass) + " to bin");
+    Streamed_run unused;
+    bin_into_job(job, pass, passes[pass], tile_results(job, passes, pass - 1, unused), s, settings);
+    return 0;
+  });
+}
+
+Streamed_run staged_write(const std::string& in_path, const std::string& out_path, const std::string& job,
+                          const Fit_settings& s, const Streaming_settings& settings, const Callback& progress)
+{
+  return in_job(job, [&] {
+    const Job_info info = read_job(job);
+    Streamed_run log;
+    log.format = info.format;
+    log.points = std::size_t(info.points);
+    log.had_normals = info.had_normals;
+    const std::vector<Pass> passes = passes_of(s, info.had_normals);
+    Record_file records;
+    for(std::size_t p = 0; p < passes.size(); ++p) records = tile_results(job, passes, p, log);
+    if(records.count != info.points)
+      throw std::runtime_error("the tiles hold " + std::to_string(records.count) + " points, the input " + std::to_string(info.points));
+    write_output(in_path, out_path, s, settings, records, log, progress);
+    return log;
+  });
+}
 
 Streamed_run run_streamed(const std::string& in_path, const std::string& out_path, const Fit_settings& s,
                           const Streaming_settings& settings, const Callback& progress)

@@ -44,6 +44,25 @@ std::size_t tile_size_for_memory(double bytes);
 Streamed_run run_streamed(const std::string& in_path, const std::string& out_path, const Fit_settings& fit,
                           const Streaming_settings& settings, const Callback& progress);
 
+/// A streamed run in steps that separate processes, or machines sharing the folder `job`, can run
+/// (wavejets.distributed runs them as Dask tasks): staged_prepare() (scan IN, bin the first pass),
+/// then for each pass P: staged_tile(P, T) for every tile T (independent tasks, in any order),
+/// and before the next pass staged_bin(P + 1); finally staged_write() writes OUT, the bytes of
+/// run_streamed(). Each step reads what the earlier ones wrote in `job` (an existing folder, left
+/// to the caller to remove) and writes its files under temporary names, renamed when complete: a
+/// step run again (a lost worker's task) is harmless. Every step gets the same settings.
+/// Returns the number of passes.
+std::size_t staged_prepare(const std::string& in_path, const std::string& out_path, const std::string& job,
+                           const Fit_settings& fit, const Streaming_settings& settings);
+/// The number of tiles of pass `pass` (once prepared or binned).
+std::size_t staged_tiles(const std::string& job, std::size_t pass);
+void staged_tile(const std::string& job, std::size_t pass, std::size_t tile, const Fit_settings& fit,
+                 const Streaming_settings& settings);
+void staged_bin(const std::string& job, std::size_t pass, const Fit_settings& fit, const Streaming_settings& settings);
+/// The run's summary (without timings).
+Streamed_run staged_write(const std::string& in_path, const std::string& out_path, const std::string& job,
+                          const Fit_settings& fit, const Streaming_settings& settings, const Callback& progress);
+
 } // namespace wavejets_demo
 
 #endif // WAVEJETS_DEMO_STREAMING_H

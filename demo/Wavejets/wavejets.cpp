@@ -1,4 +1,5 @@
-// wavejets: command-line tool of the CGAL Wavejets package.
+// wavejets: command-line tool of the CGAL Wavejets package (run_wavejets_tool(): main.cpp, and the
+// Python module for wavejets.distributed).
 //   wavejets normals|curvature|enhance-positions|enhance-normals IN OUT.ply [flags]
 //   wavejets render IN OUT.png [flags]      wavejets render --compare A B OUT.png [flags]
 // Run `wavejets --help` or `wavejets <command> --help` for the flags.
@@ -24,6 +25,7 @@
 #include "platform.h"
 #include "point_set_io.h"
 #include "streaming.h"
+#include "tool.h"
 #include "render.h"
 
 #include <algorithm>
@@ -117,6 +119,8 @@ const Flag_info flags[] = {
   {"--orient-toward", "X,Y,Z", FITS, "a point set without normals: orient the estimated normals toward this viewpoint (a scan's scanner position; on a closed object seen from one point the far side points inward), instead of by a minimum spanning tree; needed to stream such a point set"},
   {"--max-memory", "SIZE", FITS, "stream a point set larger than memory (PLY or XYZ): process it in spatial tiles sized for about SIZE of memory (e.g. 2G, 500M); the output is the same, byte for byte"},
   {"--tile-size", "N", FITS, "stream in tiles of at most N points (instead of --max-memory)"},
+  {"--job", "DIR", FITS, "run one step of a streamed run (--stage), sharing the folder DIR with the other steps: how python3 -m wavejets.distributed spreads a run over processes or machines"},
+  {"--stage", "STEP", FITS, "with --job: prepare (read IN, bin the first pass), tile:P:T (tile T of pass P), bin:P (bin pass P from pass P-1's tiles) or write (OUT from the last pass's tiles)"},
   {"--threads", "N", FITS | RENDER, "worker threads (default: all cores; 1: sequential, same results)"},
   {"--ascii", "", FITS, "write ASCII PLY (default: binary little-endian PLY, doubles)"},
   {"--width", "W", RENDER, "image width in pixels, all panels together (default 800 per panel)"},
@@ -222,10 +226,11 @@ struct Options
   double max_displacement = 0.;          // infinity: no clamp
   int threads = 0;
   bool ascii = false, quiet = false, compare = false, along_input_normals = false;
-  std::optional<bool> consistent_normals;
+  std::optional<bool> consistent_normals;             // not given: on for a mesh (normals from its faces), off for a point set
   std::optional<std::array<double, 3> > viewpoint;   // --orient-toward
   double max_memory = 0.;                  // bytes, 0: not given
-  std::size_t tile_size = 0;               // 0: not given (no streaming unless --max-memory)  // not given: on for a mesh (normals from its faces), off for a point set
+  std::size_t tile_size = 0;               // 0: not given (no streaming unless --max-memory)
+  std::string job, stage;                  // one step of a staged streamed run (--job, --stage)
   int width = 0, height = 800;
   wavejets_demo::Vec3 view = {{0., 0., 1.}}, up = {{0., 1., 0.}};
   double splat = 1.2;
@@ -290,10 +295,9 @@ wavejets_demo::Vec3 parse_vector(const std::string& flag, const std::string& tex
   return {{v[0], v[1], v[2]}};
 }
 
-Options parse_command_line(int argc, char** argv)
+Options parse_command_line(const std::vector<std::string>& args)
 {
   Options o;
-  std::vector<std::string> args(argv + 1, argv + argc);
   if(args.empty()) throw Usage_error("no command given (wavejets --help lists them)");
   if(args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
     const Command_info* c = args.size() > 1 ? find_command(args[1]) : nullptr;
@@ -367,6 +371,8 @@ Options parse_command_line(int argc, char** argv)
     else if(a == "--max-memory") o.max_memory = parse_size(a, value);
     else if(a == "--tile-size") o.tile_size = std::size_t(parse_integer(a, value, 1, 2000000000L));
     else if(a == "--threads") o.threads = int(parse_integer(a, value, 1, 4096));
+    else if(a == "--job") o.job = value;
+    else if(a == "--stage") o.stage = value;
     else if(a == "--ascii") o.ascii = true;
     else if(a == "--along-input-normals") o.along_input_normals = true;
     else if(a == "--consistent-normals") o.consistent_normals = true;
@@ -393,6 +399,7 @@ Options parse_command_line(int argc, char** argv)
     throw Usage_error("the output must be a .ply file (or .off / .obj for a mesh input): " + o.files.back());
   if(o.radius > 0 && o.radius_factor > 0) throw Usage_error("give --radius or --radius-factor, not both");
   if(o.max_memory > 0 && o.tile_size > 0) throw Usage_error("give --max-memory or --tile-size, not both");
+  if(o.job.empty() != o.stage.empty()) throw Usage_error("--job and --stage go together");
   if(o.width == 0) o.width = 800 * int(o.files.size() - 1);   // 800 per panel
   return o;
 }
@@ -640,6 +647,65 @@ std::string command_text(const wavejets_demo::Fit_settings& s, const CGAL::Wavej
   }
 }
 
+// The summary of a streamed run (without timings: a staged run's, whose steps ran elsewhere).
+std::string streamed_summary(const Options& o, const wavejets_demo::Fit_settings& s, const wavejets_demo::Streaming_settings& settings,
+                             const Neighborhood& n, std::size_t order, const wavejets_demo::Streamed_run& run, double seconds)
+{
+  const unsigned bit = o.command->bit;
+  std::ostringstream t;
+  t << std::fixed << std::setprecision(2) << o.command->name << ": streamed a point set of " << run.points << " points from "
+    << o.files[0] << " (" << run.format << ", " << (run.had_normals ? "with" : "without") << " normals) in tiles of at most "
+    << settings.tile_size << " points (" << run.tiles << " tiles; " << run.rerun_points
+    << " points fitted again with a larger halo); neighborhoods: " << n.description << "; ";
+  if(o.job.empty()) t << threads_text() << " ";
+  if(run.bare_normals) t << bare_normals_text(bit == NORMALS ? order : 2, *run.bare_normals, "oriented them toward the viewpoint " + format_point(*s.viewpoint)) << " ";
+  if(run.command) {
+    t << command_text(s, *run.command);
+    if(run.result_normals) t << "; " << result_normals_text(*run.result_normals);
+    t << ". ";
+  }
+  if(o.job.empty())
+    t << "Reading and checking took " << run.scan_seconds << " s, binning " << run.binning_seconds << " s, fitting "
+      << run.fit_seconds << " s, writing " << run.write_seconds << " s. ";
+  t << "Wrote " << o.files[1] << " (" << (o.ascii ? "ASCII" : "binary little-endian") << " PLY, " << run.points
+    << " points in input order, properties: x y z";
+  for(const std::string& p : run.columns) t << " " << p;
+  t << ", the same bytes as in memory)";
+  if(o.job.empty()) t << "; total " << seconds << " s";
+  t << ".";
+  return t.str();
+}
+
+// One step of a staged streamed run (--job DIR --stage STEP).
+int run_stage(const Options& o, const wavejets_demo::Fit_settings& s, const wavejets_demo::Streaming_settings& settings,
+              const Neighborhood& n, std::size_t order, Progress& progress)
+{
+  const std::string& in_path = o.files[0];
+  const std::string& out_path = o.files[1];
+  const std::string& stage = o.stage;
+  auto number = [&](const std::string& text) {
+    if(text.empty() || text.find_first_not_of("0123456789") != std::string::npos)
+      throw Usage_error("--stage " + stage + ": expected prepare, tile:P:T, bin:P or write");
+    return std::size_t(std::stoull(text));
+  };
+  if(stage == "prepare") {
+    const std::size_t passes = wavejets_demo::staged_prepare(in_path, out_path, o.job, s, settings);
+    if(!o.quiet) std::cout << "prepared " << o.job << ": " << passes << " passes, " << wavejets_demo::staged_tiles(o.job, 0)
+                           << " tiles in the first" << std::endl;
+  } else if(stage.compare(0, 5, "tile:") == 0) {
+    const std::size_t colon = stage.find(':', 5);
+    if(colon == std::string::npos) throw Usage_error("--stage " + stage + ": expected tile:P:T");
+    wavejets_demo::staged_tile(o.job, number(stage.substr(5, colon - 5)), number(stage.substr(colon + 1)), s, settings);
+  } else if(stage.compare(0, 4, "bin:") == 0) {
+    wavejets_demo::staged_bin(o.job, number(stage.substr(4)), s, settings);
+  } else if(stage == "write") {
+    const wavejets_demo::Streamed_run run = wavejets_demo::staged_write(in_path, out_path, o.job, s, settings, progress.stage("writing"));
+    progress.done();
+    if(!o.quiet) std::cout << streamed_summary(o, s, settings, n, order, run, 0.) << std::endl;
+  } else number("");
+  return EXIT_SUCCESS;
+}
+
 // A streamed run (--max-memory, --tile-size): a point set read in passes and fitted tile by tile;
 // the same output file as in memory.
 int run_streamed_command(const Options& o, Progress& progress)
@@ -656,36 +722,19 @@ int run_streamed_command(const Options& o, Progress& progress)
   const Neighborhood n = choose_neighborhood(o, order, Point_set(), in_path);
   const wavejets_demo::Fit_settings s = fit_settings(o, order, n, o.consistent_normals.value_or(false));
   wavejets_demo::Streaming_settings settings;
-  settings.tile_size = o.tile_size > 0 ? o.tile_size : wavejets_demo::tile_size_for_memory(o.max_memory);
+  settings.tile_size = o.tile_size > 0 ? o.tile_size : wavejets_demo::tile_size_for_memory(o.max_memory > 0 ? o.max_memory : 2e9);
   settings.ascii = o.ascii;
   settings.comment = output_comment(o);
+  if(!o.job.empty()) return run_stage(o, s, settings, n, order, progress);
   const wavejets_demo::Streamed_run run = wavejets_demo::run_streamed(in_path, out_path, s, settings, progress.stage("streaming"));
   progress.done();
-  if(!o.quiet) {
-    std::ostringstream t;
-    t << std::fixed << std::setprecision(2) << o.command->name << ": streamed a point set of " << run.points << " points from "
-      << in_path << " (" << run.format << ", " << (run.had_normals ? "with" : "without") << " normals) in tiles of at most "
-      << settings.tile_size << " points (" << run.tiles << " tiles; " << run.rerun_points
-      << " points fitted again with a larger halo); neighborhoods: " << n.description << "; " << threads_text() << " ";
-    if(run.bare_normals) t << bare_normals_text(bit == NORMALS ? order : 2, *run.bare_normals, "oriented them toward the viewpoint " + format_point(*s.viewpoint)) << " ";
-    if(run.command) {
-      t << command_text(s, *run.command);
-      if(run.result_normals) t << "; " << result_normals_text(*run.result_normals);
-      t << ". ";
-    }
-    t << "Reading and checking took " << run.scan_seconds << " s, binning " << run.binning_seconds << " s, fitting "
-      << run.fit_seconds << " s, writing " << run.write_seconds << " s. Wrote " << out_path << " ("
-      << (o.ascii ? "ASCII" : "binary little-endian") << " PLY, " << run.points << " points in input order, properties: x y z";
-    for(const std::string& p : run.columns) t << " " << p;
-    t << ", the same bytes as in memory); total " << seconds_since(t0) << " s.";
-    std::cout << t.str() << std::endl;
-  }
+  if(!o.quiet) std::cout << streamed_summary(o, s, settings, n, order, run, seconds_since(t0)) << std::endl;
   return EXIT_SUCCESS;
 }
 
 int run_fit_command_on_input(const Options& o, Progress& progress)
 {
-  if(o.max_memory > 0 || o.tile_size > 0) return run_streamed_command(o, progress);
+  if(o.max_memory > 0 || o.tile_size > 0 || !o.job.empty()) return run_streamed_command(o, progress);
   const Clock::time_point t0 = Clock::now();
   const std::string& in_path = o.files[0];
   const std::string& out_path = o.files[1];
@@ -871,12 +920,11 @@ int run_render(const Options& o, Progress& progress)
 
 } // namespace
 
-int main(int argc, char** argv)
+int wavejets_demo::run_wavejets_tool(const std::vector<std::string>& args)
 {
   std::string input;   // the first input file, named by the errors that do not name one themselves
-  wavejets_demo::remove_output_files_on_interrupt();
   try {
-    const Options o = parse_command_line(argc, argv);
+    const Options o = parse_command_line(args);
     if(!o.files.empty()) input = o.files[0] + ": ";
 #ifdef CGAL_LINKED_WITH_TBB
     std::unique_ptr<tbb::global_control> threads;

@@ -142,6 +142,8 @@ py::object make_report(const CGAL::Wavejets::Processing_report& r, const py::arr
 void bind_point_set_functions(py::module_& m);
 void bind_fitting(py::module_& m);
 void bind_io(py::module_& m);
+/// _run_tool: the `wavejets` tool in this process (wavejets.distributed's steps; src/tool.cpp).
+void bind_tool(py::module_& m);
 
 } // namespace wavejets_python
 

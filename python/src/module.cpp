@@ -77,4 +77,5 @@ PYBIND11_MODULE(_wavejets, m)
   wp::bind_point_set_functions(m);
   wp::bind_fitting(m);
   wp::bind_io(m);
+  wp::bind_tool(m);
 }

@@ -436,6 +436,31 @@ cli_case_streamed_errors() {
   [ -z "$(ls -A | grep -e '.tmp-' -e scratch)" ] || fail "disk full: temporary files left: $(ls -A)"
 }
 
+cli_case_streamed_staged() {
+  # The steps of a streamed run as separate processes sharing a job folder (the tasks of
+  # wavejets.distributed): the in-core bytes, with the tiles run in any order and one run twice.
+  "$wj" enhance-positions "$kitten" in_staged.ply -q --k 24 || fail "in-core run failed"
+  mkdir -p job
+  local flags=(enhance-positions "$kitten" st_staged.ply -q --k 24 --tile-size 700 --job job) p t tiles passes
+  run "${flags[@]}" --stage prepare || fail "prepare failed"
+  passes=$(awk '$1 == "passes" { print $2 }' job/run)
+  [ "$passes" = 2 ] || fail "enhance-positions on a point set with normals: 2 passes, not '$passes'"
+  for p in $(seq 0 $((passes - 1))); do
+    [ "$p" -eq 0 ] || run "${flags[@]}" --stage "bin:$p" || fail "bin:$p failed"
+    tiles=$(cat "job/pass-$p.tiles")
+    [ "$tiles" -gt 3 ] || fail "pass $p: $tiles tiles"
+    for t in $(seq $((tiles - 1)) -1 0); do run "${flags[@]}" --stage "tile:$p:$t" || fail "tile:$p:$t failed"; done
+    run "${flags[@]}" --stage "tile:$p:1" || fail "tile:$p:1 run again failed"
+  done
+  run "${flags[@]}" --stage write || fail "write failed"
+  cmp -s in_staged.ply st_staged.ply || fail "staged output differs from the in-core one"
+  # A step whose inputs are missing, a step that does not exist: clear errors.
+  mkdir -p empty_job
+  expect_error empty_job st_empty.ply -- normals "$kitten" st_empty.ply --job empty_job --stage write
+  expect_error "tile:0" st_bad.ply -- normals "$kitten" st_bad.ply --job job --stage tile:0
+  expect_error "--stage" st_bad.ply -- normals "$kitten" st_bad.ply --job job
+}
+
 cli_case_streamed_interrupted() {
   # A streamed run of a few seconds (300,000 points, one thread), interrupted: no output, no
   # temporary files, exit status 130.
