@@ -76,6 +76,12 @@ def main():
     write_report(a, n, tool_seconds, tool_out, runs)
 
 
+def duration(seconds):
+    if seconds >= 3600:
+        return "%.1f h" % (seconds / 3600)
+    return "%.0f min" % (seconds / 60) if seconds >= 60 else "%.0f s" % seconds
+
+
 def number(text, key):
     m = re.search(key + r" ([\d.]+) s", text)
     return float(m.group(1)) if m else float("nan")
@@ -135,13 +141,14 @@ def write_report(a, n, tool_seconds, tool_out, runs):
             s = serial / n * total
             f = per_point_fit * total / workers
             bandwidth = 1.2 * 64 + 64   # bytes per point fitted
-            w("| 10^%d | %d | %.1f h | %.1f h | %.1f h | %.0f MB/s |" % (
-                round(math.log10(total)), workers, s / 3600, f / 3600, (s + f) / 3600,
+            w("| 10^%d | %d | %s | %s | %s | %.0f MB/s |" % (
+                round(math.log10(total)), workers, duration(s), duration(f), duration(s + f),
                 bandwidth * workers / per_point_fit / 1e6))
     w("")
-    w("The serial steps read and write the whole file once each at about the rate measured here; past a few")
-    w("dozen workers they dominate: a faster disk (or splitting the input into files read in parallel, not")
-    w("done yet) is what helps then.")
+    w("The serial steps are timed here with the file in the page cache; once the files outgrow memory they")
+    w("read and write the disk (at 10^8 points on this machine, `scale.md`, reading, binning and writing took")
+    w("about twice as long per point): count on your storage's rate. Past a few dozen workers they dominate")
+    w("the time: a faster disk is what helps then (the serial steps are not split across workers yet).")
     w("")
     with open(a.out, "w") as f:
         f.write("\n".join(lines))
