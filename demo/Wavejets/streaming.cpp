@@ -263,7 +263,6 @@ public:
     next_ += size_ / bytes_;
     size_ = 0;
   }
-  std::uint64_t written() const { return next_ + size_ / bytes_; }
 private:
   void fill()
   {
