@@ -106,17 +106,18 @@ void keep_freed_memory_for_reuse()
 #endif
 }
 
-Scratch_file* Scratch_file::open_named(const std::string& path)
+Scratch_file* Scratch_file::open_named(const std::string& path, bool create)
 {
   Scratch_file* f = new Scratch_file();
 #if !defined(_WIN32)
-  f->fd_ = ::open(path.c_str(), O_RDWR);
+  f->fd_ = create ? ::open(path.c_str(), O_RDWR | O_CREAT, 0666) : ::open(path.c_str(), O_RDWR);
   if(f->fd_ < 0) {
     const int error = errno;
     delete f;
     throw std::runtime_error("cannot open " + path + " (" + std::strerror(error) + ")");
   }
 #else
+  (void)create;
   delete f;
   throw std::runtime_error("staged runs need a POSIX system");
 #endif

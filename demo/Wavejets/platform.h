@@ -37,8 +37,8 @@ class Scratch_file
 public:
   explicit Scratch_file(const std::string& near);
   /// A named file of a staged streamed run (wavejets.distributed), opened for reading and writing
-  /// and left in place.
-  static Scratch_file* open_named(const std::string& path);
+  /// (created empty if `create` and missing; never truncated) and left in place.
+  static Scratch_file* open_named(const std::string& path, bool create = false);
   ~Scratch_file();
   Scratch_file(const Scratch_file&) = delete;
   Scratch_file& operator=(const Scratch_file&) = delete;

@@ -13,30 +13,16 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <mutex>
 #include <sstream>
 
 namespace wavejets_demo {
 
 namespace {
-
-// Number of elements `name` (vertex, face) announced by a PLY header; -1 if not found.
-long ply_header_count(const std::string& path, const std::string& name)
-{
-  std::ifstream is(path, std::ios::binary);
-  std::string line;
-  long n = -1;
-  for(int i = 0; i < 1000 && std::getline(is, line); ++i) {
-    std::istringstream s(line);
-    std::string a, b;
-    long c;
-    if(s >> a >> b >> c && a == "element" && b == name) n = c;
-    if(line.compare(0, 10, "end_header") == 0) break;
-  }
-  return n;
-}
 
 // The faces of an OFF or PLY mesh, read again as a polygon soup (the point set reader skips them).
 // The soup's vertices must be the point set's, one for one.
@@ -123,6 +109,27 @@ void write_off_or_obj(std::ostream& os, const Point_set& points, const Faces& fa
 
 } // namespace
 
+bool call_cgal_io(const std::function<bool()>& read_or_write, std::string& why)
+{
+  static std::mutex one_at_a_time;
+  const std::lock_guard<std::mutex> lock(one_at_a_time);
+  std::ostringstream messages;
+  std::streambuf* saved = std::cerr.rdbuf(messages.rdbuf());
+  bool ok = false;
+  try {
+    ok = read_or_write();
+  } catch(const std::exception& e) {
+    messages << e.what() << "\n";
+  }
+  std::cerr.rdbuf(saved);
+  if(!ok) {
+    why = messages.str();
+    why = why.substr(0, why.find('\n'));
+    if(why.compare(0, 7, "Error: ") == 0) why = why.substr(7);
+  }
+  return ok;
+}
+
 std::string lower_extension(const std::string& path)
 {
   const std::size_t dot = path.find_last_of('.'), slash = path.find_last_of('/');
@@ -132,20 +139,50 @@ std::string lower_extension(const std::string& path)
   return e;
 }
 
-void check_ply_coordinate_types(const std::string& path)
+const Ply_header::Element* Ply_header::element(const std::string& name) const
 {
-  std::ifstream is(path, std::ios::binary);
-  std::string line, element, types[6];
-  const char* names[6] = {"x", "y", "z", "nx", "ny", "nz"};
-  for(int i = 0; i < 100000 && std::getline(is, line) && line.compare(0, 10, "end_header") != 0; ++i) {
+  for(auto e = elements.rbegin(); e != elements.rend(); ++e)
+    if(e->name == name) return &*e;
+  return nullptr;
+}
+
+Ply_header read_ply_header(std::istream& is)
+{
+  Ply_header h;
+  std::string line;
+  for(int i = 0; i < 100000 && std::getline(is, line); ++i) {
+    h.lines.push_back(line + "\n");
+    if(!line.empty() && line.back() == '\r') line.pop_back();
     std::istringstream s(line);
     std::string word, a, b;
     s >> word >> a >> b;
-    if(word == "element") element = a;
-    if(word == "property" && element == "vertex")
-      for(int f = 0; f < 6; ++f)
-        if(b == names[f]) types[f] = a;
+    if(word == "format") h.format = a;
+    else if(word == "element") {
+      Ply_header::Element e;
+      e.name = a;
+      e.count = std::strtoull(b.c_str(), nullptr, 10);
+      e.line = h.lines.size() - 1;
+      h.elements.push_back(e);
+    } else if(word == "property" && !h.elements.empty()) {
+      std::string index_type, name;
+      if(a == "list") s >> index_type >> name;   // property list COUNT_TYPE INDEX_TYPE NAME
+      h.elements.back().properties.push_back(a == "list" ? Ply_header::Property{"list", name} : Ply_header::Property{a, b});
+    } else if(word == "end_header") {
+      h.complete = true;
+      break;
+    }
   }
+  return h;
+}
+
+void check_ply_coordinate_types(const Ply_header& header, const std::string& path)
+{
+  std::string types[6];
+  const char* names[6] = {"x", "y", "z", "nx", "ny", "nz"};
+  if(const Ply_header::Element* vertex = header.element("vertex"))
+    for(const Ply_header::Property& p : vertex->properties)
+      for(int f = 0; f < 6; ++f)
+        if(p.name == names[f]) types[f] = p.type;
   auto is_float = [](const std::string& t) { return t == "float" || t == "float32"; };
   auto is_double = [](const std::string& t) { return t == "double" || t == "float64"; };
   const bool normals = !types[3].empty() && !types[4].empty() && !types[5].empty();   // else CGAL skips them
@@ -168,35 +205,29 @@ Input read_input(const std::string& path)
   if(!is) throw File_error(path + ": cannot open (" + std::strerror(errno) + ")");
   if(is.peek() == std::ifstream::traits_type::eof()) throw File_error(path + ": the file is empty");
 
-  if(ext == "ply") check_ply_coordinate_types(path);
-  // CGAL reports its parse errors on std::cerr: capture them, to give one line.
-  std::ostringstream cgal_messages;
-  std::streambuf* saved = std::cerr.rdbuf(cgal_messages.rdbuf());
-  bool ok = false;
-  try {
-    if(ext == "ply") ok = CGAL::IO::read_PLY(is, in.points);
-    else if(ext == "off") ok = CGAL::IO::read_OFF(is, in.points);
-    else if(ext == "obj") ok = read_obj(is, in);
-    else ok = CGAL::IO::read_XYZ(is, in.points);
-    if(ok && (ext == "off" || (ext == "ply" && ply_header_count(path, "face") > 0))) ok = read_faces(path, ext, in);
-  } catch(const std::exception& e) {
-    cgal_messages << e.what() << "\n";
-    ok = false;
-  }
-  std::cerr.rdbuf(saved);
-  if(!ok) {
-    std::string why = cgal_messages.str();
-    why = why.substr(0, why.find('\n'));
-    if(why.compare(0, 7, "Error: ") == 0) why = why.substr(7);
-    if(why.empty()) why = "malformed or truncated";
-    throw File_error(path + ": not a valid " + in.format + " file (" + why + ")");
-  }
+  Ply_header header;
   if(ext == "ply") {
-    const long announced = ply_header_count(path, "vertex");
-    if(announced >= 0 && std::size_t(announced) != in.points.size())
-      throw File_error(path + ": truncated PLY (the header announces " + std::to_string(announced) +
-                       " vertices, " + std::to_string(in.points.size()) + " could be read)");
+    header = read_ply_header(is);
+    check_ply_coordinate_types(header, path);
+    is.clear();
+    is.seekg(0);
   }
+  std::string why;
+  const bool ok = call_cgal_io([&] {
+    bool read = false;
+    if(ext == "ply") read = CGAL::IO::read_PLY(is, in.points);
+    else if(ext == "off") read = CGAL::IO::read_OFF(is, in.points);
+    else if(ext == "obj") read = read_obj(is, in);
+    else read = CGAL::IO::read_XYZ(is, in.points);
+    const Ply_header::Element* faces = header.element("face");
+    if(read && (ext == "off" || (faces && faces->count > 0))) read = read_faces(path, ext, in);
+    return read;
+  }, why);
+  if(!ok) throw File_error(path + ": not a valid " + in.format + " file (" + (why.empty() ? "malformed or truncated" : why) + ")");
+  if(const Ply_header::Element* vertices = header.element("vertex"))
+    if(vertices->count != in.points.size())
+      throw File_error(path + ": truncated PLY (the header announces " + std::to_string(vertices->count) +
+                       " vertices, " + std::to_string(in.points.size()) + " could be read)");
   if(in.points.empty()) throw File_error(path + ": contains no points");
   for(std::size_t f = 0; f < in.faces.size(); ++f)
     for(std::size_t v : in.faces[f])
@@ -247,11 +278,9 @@ std::string ply_text(const Point_set& points, bool ascii, const std::string& com
   std::ostringstream ply;
   if(ascii) { CGAL::IO::set_ascii_mode(ply); ply.precision(17); }
   else CGAL::IO::set_binary_mode(ply);
-  std::ostringstream cgal_messages;
-  std::streambuf* saved = std::cerr.rdbuf(cgal_messages.rdbuf());
-  const bool ok = CGAL::IO::write_PLY(ply, points, comment);
-  std::cerr.rdbuf(saved);
-  if(!ok) throw File_error("CGAL could not write a PLY (" + cgal_messages.str().substr(0, cgal_messages.str().find('\n')) + ")");
+  std::string why;
+  if(!call_cgal_io([&] { return CGAL::IO::write_PLY(ply, points, comment); }, why))
+    throw File_error("CGAL could not write a PLY (" + why + ")");
   return ply.str();
 }
 

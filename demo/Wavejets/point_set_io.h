@@ -8,8 +8,12 @@
 
 #include "render.h"   // Faces
 
+#include <cstdint>
+#include <functional>
+#include <istream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace wavejets_demo {
 
@@ -21,13 +25,42 @@ typedef CGAL::Point_set_3<Point, Vector> Point_set;
 /// A file that cannot be read or written; its message names the file and says why, on one line.
 struct File_error : std::runtime_error { using std::runtime_error::runtime_error; };
 
+/// Calls `read_or_write` (a CGAL reader or writer: whether it succeeded) with what CGAL prints on
+/// std::cerr captured, as well as the message of an exception it throws. Returns false on failure,
+/// with the first line of the messages (without "Error: ") in `why`. One call at a time in the
+/// process (std::cerr is the process's): threads may read and write concurrently.
+bool call_cgal_io(const std::function<bool()>& read_or_write, std::string& why);
+
 /// The extension of `path`, lower case, without the dot ("" if none).
 std::string lower_extension(const std::string& path);
 
-/// Throws `File_error` if the PLY header of `path` gives x, y, z, nx, ny or nz a type that CGAL's
-/// point set reader cannot read (it dereferences a null pointer): they must be float or double,
-/// and all float when x, y or z is float.
-void check_ply_coordinate_types(const std::string& path);
+/// The header of a PLY file: its format, its elements and their properties, its lines.
+struct Ply_header
+{
+  struct Property { std::string type, name; };   // type "list" for a list property
+  struct Element
+  {
+    std::string name;
+    std::uint64_t count = 0;
+    std::vector<Property> properties;
+    std::size_t line = 0;                         // the index of its line in `lines`
+  };
+  std::string format;                  // ascii, binary_little_endian or binary_big_endian
+  std::vector<Element> elements;
+  std::vector<std::string> lines;      // as in the file, each with its end of line
+  bool complete = false;               // ends with end_header
+  /// The last element named `name`, or null.
+  const Element* element(const std::string& name) const;
+};
+
+/// Reads the header of a PLY file from `is` (up to 100,000 lines), leaving `is` at the first byte
+/// of the body.
+Ply_header read_ply_header(std::istream& is);
+
+/// Throws `File_error` if `header` (of the file `path`) gives x, y, z, nx, ny or nz a type that
+/// CGAL's point set reader cannot read (it dereferences a null pointer): they must be float or
+/// double, and all float when x, y or z is float.
+void check_ply_coordinate_types(const Ply_header& header, const std::string& path);
 
 /// A point set or a mesh as read from a file.
 struct Input

@@ -1,7 +1,8 @@
 // See streaming.h. A streamed run, in passes over files, never holding the whole point set:
 //  1. scan: IN is read in chunks (CGAL's own reader on each chunk, so that every value is the
-//     in-core one), checked as in core (NaN, coinciding points, normals), and copied as records
-//     (index, position, normal, fitted, curvature) into a scratch file;
+//     in-core one; a binary little-endian PLY of float or double coordinates is read directly, to
+//     the same values), checked as in core (NaN, coinciding points, normals), and copied as records
+//     (index, position, normal, fitted, curvature) into a scratch file (read directly: read again);
 //  2. per pass of the library (normals of a point set without normals; the command; for
 //     enhance-positions the normals of the moved points): a histogram of the records on a grid,
 //     tiles as median splits of the grid's cells, the records binned by cell (a tile's cells
@@ -10,8 +11,10 @@
 //     neighborhood reaches past the halo are run again with a halo twice as large. Every pass
 //     writes one record per point, tile after tile, each tile's records in index order;
 //  3. write: IN is read again in chunks, each chunk gets its records (a merge of the tiles' sorted
-//     runs) and is written by CGAL's PLY writer; the first header (its vertex count set to the
-//     whole count) and the bodies make the file the in-core run writes, byte for byte.
+//     runs) and is written by CGAL's PLY writer (or, where that gives the same bytes, directly);
+//     the first header (its vertex count set to the whole count) and the bodies make the file the
+//     in-core run writes, byte for byte. Binary output of a binary PLY is written in parts, each at
+//     its place in the file.
 #include "streaming.h"
 #include "platform.h"
 
@@ -28,6 +31,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <fstream>
 #include <future>
@@ -43,6 +47,17 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
+// Chunks of at most this many points are read and written at a time.
+const std::size_t chunk_points = 1 << 16;
+
+bool machine_is_little_endian()
+{
+  const std::uint16_t one = 1;
+  unsigned char first_byte;
+  std::memcpy(&first_byte, &one, 1);
+  return first_byte == 1;
+}
+
 // ------------------------------------------------------------------------------------------------
 // The input, chunk by chunk.
 class Input_chunks
@@ -56,13 +71,23 @@ public:
                        "to process a ." + ext + " file in memory)");
     if(!is_) throw File_error(path + ": cannot open (" + std::strerror(errno) + ")");
     if(is_.peek() == std::ifstream::traits_type::eof()) throw File_error(path + ": the file is empty");
-    if(ext == "ply") {
-      check_ply_coordinate_types(path);
-      read_ply_header();
-    }
+    if(ext == "ply") read_header();
     else format_ = "XYZ";
   }
   const std::string& format() const { return format_; }
+  // Binary PLY: every vertex has the same bytes, so that a reader can start at any of them.
+  bool is_binary() const { return binary_; }
+
+  // Binary PLY: the next chunk starts at vertex `first`.
+  void skip_to(std::uint64_t first)
+  {
+    if(!binary_) throw std::logic_error("streamed run: only a binary PLY is read from a given vertex");
+    if(first > announced_) throw std::logic_error("streamed run: no vertex " + std::to_string(first));
+    is_.clear();
+    is_.seekg(std::streamoff(data_start_ + first * record_bytes_));
+    remaining_ = announced_ - first;
+    first_ = false;
+  }
 
   // The next chunk of at most `lines` points (XYZ: lines) into `chunk`, emptied first; false at the end.
   bool next(Point_set& chunk, std::size_t lines)
@@ -95,19 +120,10 @@ public:
     if(count == 0) return false;
     if(format_ == "PLY") remaining_ -= count;
     std::istringstream is(text);
-    std::ostringstream cgal_messages;
-    std::streambuf* saved = std::cerr.rdbuf(cgal_messages.rdbuf());
-    bool ok = false;
-    try {
-      ok = format_ == "PLY" ? CGAL::IO::read_PLY(is, chunk) : CGAL::IO::read_XYZ(is, chunk);
-    } catch(const std::exception& e) { cgal_messages << e.what() << "\n"; }
-    std::cerr.rdbuf(saved);
-    if(!ok || (format_ == "PLY" && chunk.size() != count)) {
-      std::string why = cgal_messages.str();
-      why = why.substr(0, why.find('\n'));
-      if(why.compare(0, 7, "Error: ") == 0) why = why.substr(7);
+    std::string why;
+    const bool ok = call_cgal_io([&] { return format_ == "PLY" ? CGAL::IO::read_PLY(is, chunk) : CGAL::IO::read_XYZ(is, chunk); }, why);
+    if(!ok || (format_ == "PLY" && chunk.size() != count))
       throw File_error(path_ + ": not a valid " + format_ + " file (" + (why.empty() ? "malformed or truncated" : why) + ")");
-    }
     return true;
   }
 
@@ -135,57 +151,40 @@ public:
   }
 
 private:
-  void read_ply_header()
+  void read_header()
   {
     format_ = "PLY";
-    std::string line, header;
-    bool vertex_seen = false, ended = false;
-    for(int i = 0; i < 100000 && std::getline(is_, line); ++i) {
-      const std::string raw = line + "\n";
-      if(!line.empty() && line.back() == '\r') line.pop_back();
-      std::istringstream s(line);
-      std::string word, a, b;
-      s >> word;
-      if(word == "format") {
-        s >> a;
-        binary_ = a != "ascii";
-        little_endian_ = a == "binary_little_endian";
-      } else if(word == "element") {
-        s >> a >> b;
-        if(vertex_seen || a != "vertex")
-          throw File_error(path_ + ": a streamed run reads PLY point sets (one vertex element); this file has a '" + a +
-                           "' element (give no --max-memory / --tile-size to process a mesh in memory)");
-        vertex_seen = true;
-        char* end = nullptr;
-        remaining_ = std::strtoull(b.c_str(), &end, 10);
-        before_count_ = header;
-        header.clear();
-        continue;
-      } else if(word == "property" && vertex_seen) {
-        s >> a;
-        if(a == "list") throw File_error(path_ + ": a streamed run reads PLY vertices without list properties");
-        const std::size_t bytes = a == "char" || a == "uchar" || a == "int8" || a == "uint8" ? 1
-                                : a == "short" || a == "ushort" || a == "int16" || a == "uint16" ? 2
-                                : a == "int" || a == "uint" || a == "float" || a == "int32" || a == "uint32" || a == "float32" ? 4
-                                : a == "double" || a == "float64" ? 8 : 0;
-        if(bytes == 0) throw File_error(path_ + ": not a valid PLY file (unknown property type '" + a + "')");
-        s >> b;
-        const bool floating = a == "float" || a == "float32" || a == "double" || a == "float64";
-        for(int f = 0; f < 6; ++f)
-          if(b == field_names[f]) fields_[f] = Field{record_bytes_, floating ? bytes : 0, true};
-        record_bytes_ += bytes;
-      }
-      header += raw;
-      if(word == "end_header") { ended = true; break; }
-    }
-    if(!ended || !vertex_seen || record_bytes_ == 0)
+    const Ply_header h = read_ply_header(is_);
+    check_ply_coordinate_types(h, path_);
+    for(std::size_t e = 0; e < h.elements.size(); ++e)
+      if(e > 0 || h.elements[e].name != "vertex")
+        throw File_error(path_ + ": a streamed run reads PLY point sets (one vertex element); this file has a '" + h.elements[e].name +
+                         "' element (give no --max-memory / --tile-size to process a mesh in memory)");
+    if(!h.complete || h.elements.empty() || h.elements[0].properties.empty())
       throw File_error(path_ + ": not a valid PLY file (no end_header, or no vertex element with properties)");
-    after_count_ = header;
-    announced_ = remaining_;
-    const std::uint16_t one = 1;
-    unsigned char first_byte;
-    std::memcpy(&first_byte, &one, 1);
-    direct_ = binary_ && little_endian_ && first_byte == 1;
+    const Ply_header::Element& vertex = h.elements[0];
+    binary_ = h.format != "ascii";
+    little_endian_ = h.format == "binary_little_endian";
+    for(const Ply_header::Property& p : vertex.properties) {
+      const std::string& a = p.type;
+      if(a == "list") throw File_error(path_ + ": a streamed run reads PLY vertices without list properties");
+      const std::size_t bytes = a == "char" || a == "uchar" || a == "int8" || a == "uint8" ? 1
+                              : a == "short" || a == "ushort" || a == "int16" || a == "uint16" ? 2
+                              : a == "int" || a == "uint" || a == "float" || a == "int32" || a == "uint32" || a == "float32" ? 4
+                              : a == "double" || a == "float64" ? 8 : 0;
+      if(bytes == 0) throw File_error(path_ + ": not a valid PLY file (unknown property type '" + a + "')");
+      const bool floating = a == "float" || a == "float32" || a == "double" || a == "float64";
+      for(int f = 0; f < 6; ++f)
+        if(p.name == field_names[f]) fields_[f] = Field{record_bytes_, floating ? bytes : 0, true};
+      record_bytes_ += bytes;
+    }
+    // The header around the vertex count, to give each chunk its own.
+    for(std::size_t l = 0; l < h.lines.size(); ++l)
+      if(l < vertex.line) before_count_ += h.lines[l];
+      else if(l > vertex.line) after_count_ += h.lines[l];
+    remaining_ = announced_ = vertex.count;
+    data_start_ = std::uint64_t(is_.tellg());
+    direct_ = binary_ && little_endian_ && machine_is_little_endian();
     int normals = 0;
     for(int f = 0; f < 6; ++f) {
       if(fields_[f].present && fields_[f].bytes == 0) direct_ = false;   // an integer coordinate: CGAL converts it
@@ -222,7 +221,7 @@ private:
   std::vector<char> buffer_;
   bool binary_ = false, little_endian_ = false, direct_ = false, has_normals_ = false, first_ = true;
   std::size_t record_bytes_ = 0;
-  std::uint64_t remaining_ = 0, announced_ = 0;
+  std::uint64_t remaining_ = 0, announced_ = 0, data_start_ = 0;
 };
 
 // ------------------------------------------------------------------------------------------------
@@ -297,6 +296,8 @@ struct Record_file
 {
   std::size_t bytes = sizeof(Record);   // of each record
   std::uint64_t count = 0;
+  // Not empty: the records are this input's points, read directly again (Input_chunks::reads_directly()), not runs.
+  std::string input;
   std::vector<Record_run> runs;
   CGAL::Bbox_3 bounds;
 };
@@ -387,15 +388,16 @@ void sort_by_index(std::vector<Record>& records)
 // ------------------------------------------------------------------------------------------------
 enum class Pass { BARE_NORMALS, COMMAND, RESULT_NORMALS };
 
-// Whether the run may use more than one thread (not with --threads 1: a sequential run).
-bool more_than_one_thread()
+// The threads the run may use (1 with --threads 1: a sequential run).
+std::size_t threads_allowed()
 {
 #ifdef CGAL_LINKED_WITH_TBB
-  return tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism) > 1;
+  return tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
 #else
-  return false;
+  return 1;
 #endif
 }
+bool more_than_one_thread() { return threads_allowed() > 1; }
 
 // The passes of a run: normals of a point set without normals, the command (unless that was
 // all: normals), then for enhance-positions the normals of the moved points.
@@ -478,6 +480,7 @@ public:
 
   std::size_t output_bytes() const { return pass_ == Pass::COMMAND ? result_bytes(s_.command) : sizeof(Record); }
   std::size_t number_of_tiles() const { return tiles_.size(); }
+  std::uint64_t points_of_tile(std::size_t t) const { return tile_first_[t + 1] - tile_first_[t]; }
 
   // A staged run (staged_*()): the plan of the pass (what bin() decided), saved next to its bins.
   void save_plan(const std::string& path) const
@@ -558,36 +561,46 @@ public:
     }
     tile_first_.push_back(next);
     cell_count_ = std::move(counts);
-    // Each tile buffers its records, then writes them at their cells' next places.
+    // Each tile buffers its records (and their cells), then writes them at their cells' next places.
     // 64 MB of buffers in all, at least 64 records per tile.
     const std::size_t per_tile = std::max<std::size_t>(64, (std::size_t(64) << 20) / sizeof(Record) / tiles_.size());
+    // A buffered record's place in the bins and its place in the buffer, as one sort key.
+    const int buffer_bits = 20;
+    static_assert((std::size_t(64) << 20) / sizeof(Record) <= (std::size_t(1) << buffer_bits), "buffer places fit in the key");
+    if(count_ >> (64 - buffer_bits)) throw std::runtime_error("more points than a streamed run bins (2^44)");
     std::vector<std::vector<Record> > buffers(tiles_.size());
+    std::vector<std::vector<std::uint32_t> > buffer_cells(tiles_.size());
     tile_box_.assign(tiles_.size(), CGAL::Bbox_3());
-    std::vector<std::uint64_t> cursor = cell_first_;
+    std::vector<std::uint64_t> cursor = cell_first_, placed;
     std::vector<char> bytes;
-    auto flush = [&](std::vector<Record>& buffer) {
-      std::vector<std::pair<std::uint64_t, const Record*> > placed;
-      for(const Record& r : buffer) placed.emplace_back(cursor[grid_.cell_of(r.position)]++, &r);
+    auto flush = [&](std::size_t t) {
+      std::vector<Record>& buffer = buffers[t];
+      placed.clear();
+      for(std::size_t i = 0; i < buffer.size(); ++i) placed.push_back((cursor[buffer_cells[t][i]]++ << buffer_bits) | i);
       std::sort(placed.begin(), placed.end());
       for(std::size_t i = 0; i < placed.size();) {
         std::size_t j = i + 1;
-        while(j < placed.size() && placed[j].first == placed[j - 1].first + 1) ++j;
+        while(j < placed.size() && (placed[j] >> buffer_bits) == (placed[j - 1] >> buffer_bits) + 1) ++j;
         bytes.resize((j - i) * sizeof(Record));
-        for(std::size_t m = i; m < j; ++m) std::memcpy(&bytes[(m - i) * sizeof(Record)], placed[m].second, sizeof(Record));
-        bins_->write(bytes.data(), bytes.size(), placed[i].first * sizeof(Record));
+        for(std::size_t m = i; m < j; ++m)
+          std::memcpy(&bytes[(m - i) * sizeof(Record)], &buffer[placed[m] & ((std::uint64_t(1) << buffer_bits) - 1)], sizeof(Record));
+        bins_->write(bytes.data(), bytes.size(), (placed[i] >> buffer_bits) * sizeof(Record));
         i = j;
       }
       buffer.clear();
+      buffer_cells[t].clear();
     };
     for_each_input(in, [&](const Record& r) {
-      const std::uint32_t t = tile_of[grid_.cell_of(r.position)];
+      const std::size_t cell = grid_.cell_of(r.position);
+      const std::uint32_t t = tile_of[cell];
       tile_box_[t] += CGAL::Bbox_3(r.position[0], r.position[1], r.position[2], r.position[0], r.position[1], r.position[2]);
       std::vector<Record>& buffer = buffers[t];
-      if(buffer.empty()) buffer.reserve(per_tile);
+      if(buffer.empty()) { buffer.reserve(per_tile); buffer_cells[t].reserve(per_tile); }
       buffer.push_back(r);
-      if(buffer.size() == per_tile) flush(buffer);
+      buffer_cells[t].push_back(std::uint32_t(cell));
+      if(buffer.size() == per_tile) flush(t);
     });
-    for(std::vector<Record>& buffer : buffers) flush(buffer);
+    for(std::size_t t = 0; t < tiles_.size(); ++t) flush(t);
   }
 
 private:
@@ -595,6 +608,23 @@ private:
 
   template <class F> static void for_each_input(const Record_file& in, const F& f)
   {
+    if(!in.input.empty()) {
+      Input_chunks chunks(in.input);
+      std::vector<double> v;
+      Record r;
+      std::memset(&r, 0, sizeof r);
+      std::uint64_t index = 0;
+      while(chunks.next_values(v, chunk_points))
+        for(std::size_t i = 0; i < v.size(); i += 6) {
+          r.index = index++;
+          std::memcpy(r.position, &v[i], sizeof r.position);
+          std::memcpy(r.normal, &v[i + 3], sizeof r.normal);
+          f(r);
+        }
+      if(index != in.count)
+        throw File_error(in.input + ": changed while it was read (" + std::to_string(index) + " points read again, " + std::to_string(in.count) + " before)");
+      return;
+    }
     for(const Record_run& run : in.runs) {
       Record_stream reader(*run.file, in.bytes, run.first, run.end);
       while(!reader.done()) f(reader.take().record);
@@ -677,7 +707,7 @@ private:
   {
     Gathered g;
     const CGAL::Bbox_3& box = tile_box_[t];
-    const std::size_t tile_points = std::size_t(tile_first_[t + 1] - tile_first_[t]);
+    const std::size_t tile_points = std::size_t(points_of_tile(t));
     g.halo = first_halo(box, tile_points);
     const double h = g.halo;
     g.extent = CGAL::Bbox_3(box.xmin() - h, box.ymin() - h, box.zmin() - h, box.xmax() + h, box.ymax() + h, box.zmax() + h);
@@ -816,9 +846,6 @@ private:
   std::size_t result_bytes_ = sizeof(Record);
 };
 
-// Chunks of at most this many points are read and written at a time.
-const std::size_t chunk_points = 1 << 16;
-
 // Pass 1: the input's points as records, checked as the in-core reader checks them.
 Record_file scan(const std::string& in_path, const std::shared_ptr<Scratch_file>& file, const Fit_settings& s, Streamed_run& log)
 {
@@ -844,10 +871,11 @@ Record_file scan(const std::string& in_path, const std::shared_ptr<Scratch_file>
     const CGAL::Bbox_3 b(x, y, z, x, y, z);
     if(f.count == 0) { first_point[0] = x; first_point[1] = y; first_point[2] = z; f.bounds = b; }
     else { f.bounds += b; all_same = all_same && x == first_point[0] && y == first_point[1] && z == first_point[2]; }
-    writer.put(&r);
+    if(f.input.empty()) writer.put(&r);
     ++f.count;
   };
   if(chunks.reads_directly()) {
+    f.input = in_path;   // read again by the binning, not copied
     std::vector<double> v;
     while(chunks.next_values(v, chunk_points))
       for(std::size_t i = 0; i < v.size(); i += 6) add(v[i], v[i + 1], v[i + 2], chunks.has_normals() ? &v[i + 3] : nullptr);
@@ -876,21 +904,33 @@ Record_file scan(const std::string& in_path, const std::shared_ptr<Scratch_file>
     // Normals that are all zero or not finite count as none, as in core: the records keep them,
     // the first pass (Pass::BARE_NORMALS) does not read them.
   }
-  f.runs.push_back(Record_run{file, 0, f.count});
+  if(f.input.empty()) f.runs.push_back(Record_run{file, 0, f.count});
   log.scan_seconds = seconds_since(t0);
   return f;
 }
 
-// The records of the indices [first, first + out.size()), from the runs of `f` (each sorted).
+// The records of the indices [first, first + out.size()), from the runs of `f` (each in index
+// order), for increasing `first` from `start` on.
 class Record_merge
 {
 public:
-  explicit Record_merge(const Record_file& f)
+  Record_merge(const Record_file& f, std::uint64_t start)
   {
     const std::size_t bytes = f.bytes;
     // 32 MB of buffers in all, at least 64 records per run.
     const std::size_t buffered = std::max<std::size_t>(64, (std::size_t(32) << 20) / bytes / std::max<std::size_t>(1, f.runs.size()));
-    for(const Record_run& run : f.runs) streams_.emplace_back(new Record_stream(*run.file, bytes, run.first, run.end, buffered));
+    for(const Record_run& run : f.runs) {
+      // The run's first record of index >= start.
+      std::uint64_t lo = run.first, hi = run.end;
+      while(lo < hi) {
+        const std::uint64_t mid = lo + (hi - lo) / 2;
+        std::uint64_t index = 0;
+        run.file->read(&index, sizeof index, mid * bytes + offsetof(Record, index));
+        if(index < start) lo = mid + 1;
+        else hi = mid;
+      }
+      streams_.emplace_back(new Record_stream(*run.file, bytes, lo, run.end, buffered));
+    }
   }
   void next(std::uint64_t first, std::vector<Result>& out)
   {
@@ -903,6 +943,181 @@ public:
 private:
   std::vector<std::unique_ptr<Record_stream> > streams_;
 };
+
+// ------------------------------------------------------------------------------------------------
+// Writing OUT: IN read again, each vertex with its record's values, in the bytes CGAL's PLY writer
+// gives the in-core point set. In binary from a binary PLY every vertex has the same bytes: the
+// vertices are written in parts, each at its place in the file (by threads, or by the steps of a
+// staged run).
+
+// A chunk of IN as the in-core point set is after the command: the output's columns, the records' values.
+void fill_chunk(Point_set& chunk, const Fit_settings& s, bool had_normals, const std::vector<Result>& values)
+{
+  if(had_normals && !chunk.has_normal_map()) chunk.add_normal_map(Vector(0, 0, 0));
+  if(!had_normals && chunk.has_normal_map()) chunk.remove_normal_map();
+  const Output_columns columns = add_output_columns(chunk, s.command);
+  std::size_t j = 0;
+  for(Point_set::Index i : chunk) {
+    const Result& v = values[j++];
+    const Record& r = v.record;
+    if(s.command == POSITIONS) chunk.point(i) = Point(r.position[0], r.position[1], r.position[2]);
+    chunk.normal(i) = Vector(r.normal[0], r.normal[1], r.normal[2]);
+    columns.fitted[i] = (unsigned char)(r.fitted);
+    for(std::size_t c = 0; c < columns.curvature.size(); ++c) columns.curvature[c][i] = v.curvature[c];
+  }
+}
+
+// The output's PLY header and the bytes of each vertex.
+struct Output_layout
+{
+  std::string header;                 // announcing every point
+  std::uint64_t points = 0;
+  std::size_t vertex_bytes = 0;       // binary output: of every vertex (0: ASCII)
+  std::vector<std::string> columns;   // the vertices' properties, for the summary
+};
+
+Output_layout output_layout(const std::string& in_path, const Fit_settings& s, const Streaming_settings& settings,
+                            bool had_normals, std::uint64_t points)
+{
+  Input_chunks chunks(in_path);
+  Point_set chunk;
+  while(chunks.next(chunk, 1) && chunk.empty()) {}   // an XYZ file's comment lines
+  if(chunk.empty()) throw File_error(in_path + ": changed while it was read (no point read again)");
+  fill_chunk(chunk, s, had_normals, std::vector<Result>(chunk.size()));
+  const std::string text = ply_text(chunk, settings.ascii, settings.comment);
+  const std::size_t body = text.find("end_header\n") + 11;
+  Output_layout l;
+  l.points = points;
+  l.header = text.substr(0, body);
+  const std::string count = "element vertex " + std::to_string(chunk.size()) + "\n";
+  l.header.replace(l.header.find(count), count.size(), "element vertex " + std::to_string(points) + "\n");
+  if(!settings.ascii) l.vertex_bytes = (text.size() - body) / chunk.size();
+  for(const std::string& p : chunk.properties())
+    if(p != "index" && p != "point") l.columns.push_back(p == "normal" ? "nx ny nz" : p);
+  return l;
+}
+
+// Whether OUT is written in parts: binary output, IN a binary PLY.
+bool writes_in_parts(const std::string& in_path, const Streaming_settings& settings)
+{
+  return !settings.ascii && Input_chunks(in_path).is_binary();
+}
+
+// The binary vertices of OUT straight from IN's coordinates (as Input_chunks::next_values() reads
+// them) and the records, without CGAL's reader and writer (several times faster): where every
+// vertex property of the output header is one of x y z nx ny nz, fitted and the curvature columns.
+// write_vertices() uses it once it gave CGAL's bytes on a first chunk.
+class Direct_vertices
+{
+public:
+  // None unless `header` is binary little-endian (on a little-endian machine) and its vertex
+  // properties are all known.
+  static std::optional<Direct_vertices> of(const std::string& header, bool positions_from_records)
+  {
+    std::istringstream is(header);
+    const Ply_header h = read_ply_header(is);
+    const Ply_header::Element* vertex = h.element("vertex");
+    if(!machine_is_little_endian() || h.format != "binary_little_endian" || !vertex) return std::nullopt;
+    Direct_vertices d;
+    d.positions_from_records_ = positions_from_records;
+    const std::vector<std::string>& curvature = curvature_column_names();
+    static const char* const fields[7] = {"x", "y", "z", "nx", "ny", "nz", "fitted"};
+    for(const Ply_header::Property& p : vertex->properties) {
+      Column c;
+      c.type = p.type == "double" ? DOUBLE : p.type == "float" ? FLOAT : p.type == "uchar" ? UCHAR : NONE;
+      c.source = int(std::find(fields, fields + 7, p.name) - fields);
+      if(c.source == 7) {
+        c.curvature = std::size_t(std::find(curvature.begin(), curvature.end(), p.name) - curvature.begin());
+        if(c.curvature == curvature.size()) return std::nullopt;
+      }
+      if(c.type == NONE) return std::nullopt;
+      d.columns_.push_back(c);
+    }
+    return d;
+  }
+
+  // Appends the bytes of a vertex of IN coordinates `in` (x, y, z) and result `r`.
+  void append(std::string& out, const double* in, const Result& r) const
+  {
+    for(const Column& c : columns_) {
+      const double v = c.source < 3 ? (positions_from_records_ ? r.record.position[c.source] : in[c.source])
+                     : c.source < 6 ? r.record.normal[c.source - 3]
+                     : c.source == 6 ? double((unsigned char)(r.record.fitted)) : r.curvature[c.curvature];
+      if(c.type == DOUBLE) out.append(reinterpret_cast<const char*>(&v), sizeof v);
+      else if(c.type == FLOAT) { const float f = float(v); out.append(reinterpret_cast<const char*>(&f), sizeof f); }
+      else out.push_back(char((unsigned char)(v)));
+    }
+  }
+
+private:
+  enum Type { NONE, DOUBLE, FLOAT, UCHAR };
+  struct Column
+  {
+    Type type = NONE;
+    int source = 0;            // x y z nx ny nz fitted, 7: a curvature column
+    std::size_t curvature = 0;
+  };
+  std::vector<Column> columns_;
+  bool positions_from_records_ = false;
+};
+
+// Writes the vertices [first, end) of OUT (as `layout` says) at `offset` of `out`: IN read again
+// from vertex `first` (0 unless IN is a binary PLY), each vertex with its record's values.
+// `progress` gets the fraction written.
+void write_vertices(const std::string& in_path, std::uint64_t first, std::uint64_t end, const Output_layout& layout,
+                    const Record_file& records, const Fit_settings& s, const Streaming_settings& settings, bool had_normals,
+                    Scratch_file& out, std::uint64_t offset, const std::function<void(double)>& progress)
+{
+  Input_chunks chunks(in_path);
+  if(first > 0) chunks.skip_to(first);
+  Record_merge merge(records, first);
+  std::optional<Direct_vertices> direct;
+  if(chunks.reads_directly() && !settings.ascii) direct = Direct_vertices::of(layout.header, s.command == POSITIONS);
+  bool checked = false;   // the direct bytes were CGAL's on the first chunk
+  std::uint64_t at = first;
+  Point_set chunk;
+  std::vector<Result> values;
+  std::vector<double> in;
+  std::string bytes, direct_bytes;
+  while(at < end) {
+    const std::size_t wanted = std::size_t(std::min<std::uint64_t>(chunk_points, end - at));
+    bytes.clear();
+    if(direct && checked) {
+      if(!chunks.next_values(in, wanted)) break;
+      values.assign(in.size() / 6, Result());
+      merge.next(at, values);
+      for(std::size_t i = 0; i < values.size(); ++i) direct->append(bytes, &in[6 * i], values[i]);
+    } else {
+      if(!chunks.next(chunk, wanted)) break;
+      if(chunk.empty()) continue;
+      values.assign(chunk.size(), Result());
+      merge.next(at, values);
+      fill_chunk(chunk, s, had_normals, values);
+      const std::string text = ply_text(chunk, settings.ascii, settings.comment);
+      bytes.assign(text, text.find("end_header\n") + 11, std::string::npos);
+      if(direct) {
+        direct_bytes.clear();
+        std::size_t j = 0;
+        for(Point_set::Index i : chunk) {
+          const double p[3] = {chunk.point(i).x(), chunk.point(i).y(), chunk.point(i).z()};
+          direct->append(direct_bytes, p, values[j++]);
+        }
+        checked = direct_bytes == bytes;
+        if(!checked) direct.reset();
+      }
+    }
+    out.write(bytes.data(), bytes.size(), offset);
+    offset += bytes.size();
+    at += values.size();
+    progress(double(at - first) / double(end - first));
+  }
+  bool more = false;
+  if(at == end && end == layout.points)
+    while(!more && chunks.next(chunk, chunk_points)) more = !chunk.empty();
+  if(at != end || more)
+    throw File_error(in_path + ": changed while it was read (" + (more ? "more than " : "") + std::to_string(at) + " points read again, " +
+                     std::to_string(end) + " before)");
+}
 
 } // namespace
 
@@ -923,8 +1138,6 @@ Streamed_run run(const std::string& in_path, const std::string& out_path, const 
                  const Streaming_settings& settings, const Callback& progress)
 {
   Streamed_run log;
-  if(output_format(out_path) != Output_format::PLY)
-    throw File_error(out_path + ": a streamed run writes a .ply file");
   Record_file records = scan(in_path, std::make_shared<Scratch_file>(out_path), s, log);
   const std::vector<Pass> passes = passes_of(s, log.had_normals);
   std::size_t pass_index = 0;
@@ -940,57 +1153,29 @@ Streamed_run run(const std::string& in_path, const std::string& out_path, const 
   return log;
 }
 
-// Writing: the input again, chunk by chunk, with the records' values.
+// Writing: the header, then the vertices (in parts written by threads where writes_in_parts()).
 void write_output(const std::string& in_path, const std::string& out_path, const Fit_settings& s,
                   const Streaming_settings& settings, const Record_file& records, Streamed_run& log, const Callback& progress)
 {
   const Clock::time_point tw = Clock::now();
+  const Output_layout layout = output_layout(in_path, s, settings, log.had_normals, log.points);
+  log.columns = layout.columns;
   Output_file out(out_path);
   {
-    std::ofstream os(out.temporary_path(), std::ios::binary);
-    if(!os) throw File_error(out_path + ": cannot write (" + std::strerror(errno) + ")");
-    Input_chunks chunks(in_path);
-    Record_merge merge(records);
-    Point_set chunk;
-    std::uint64_t first = 0;
-    bool header_written = false;
-    std::vector<Result> values;
-    while(chunks.next(chunk, chunk_points)) {
-      if(chunk.empty()) continue;
-      if(log.had_normals && !chunk.has_normal_map()) chunk.add_normal_map(Vector(0, 0, 0));
-      if(!log.had_normals && chunk.has_normal_map()) chunk.remove_normal_map();
-      const Output_columns columns = add_output_columns(chunk, s.command);
-      values.assign(chunk.size(), Result());
-      merge.next(first, values);
-      std::size_t j = 0;
-      for(Point_set::Index i : chunk) {
-        const Result& v = values[j++];
-        const Record& r = v.record;
-        if(s.command == POSITIONS) chunk.point(i) = Point(r.position[0], r.position[1], r.position[2]);
-        chunk.normal(i) = Vector(r.normal[0], r.normal[1], r.normal[2]);
-        columns.fitted[i] = (unsigned char)(r.fitted);
-        for(std::size_t c = 0; c < columns.curvature.size(); ++c) columns.curvature[c][i] = v.curvature[c];
-      }
-      const std::string text = ply_text(chunk, settings.ascii, settings.comment);
-      const std::size_t body = text.find("end_header\n") + 11;
-      if(!header_written) {
-        std::string header = text.substr(0, body);
-        const std::string count = "element vertex " + std::to_string(chunk.size()) + "\n";
-        header.replace(header.find(count), count.size(), "element vertex " + std::to_string(log.points) + "\n");
-        os.write(header.data(), std::streamsize(header.size()));
-        header_written = true;
-        for(const std::string& p : chunk.properties())
-          if(p != "index" && p != "point") log.columns.push_back(p == "normal" ? "nx ny nz" : p);
-      }
-      os.write(text.data() + body, std::streamsize(text.size() - body));
-      first += chunk.size();
-      if(!os) break;
-      progress(0.9 + 0.1 * double(first) / double(log.points));
-    }
-    os.close();
-    if(!os) throw File_error(out_path + ": cannot write (disk full or not writable?)");
-    if(first != log.points) throw File_error(in_path + ": changed while it was read (" + std::to_string(first) + " points read again, " +
-                                             std::to_string(log.points) + " before)");
+    const std::unique_ptr<Scratch_file> file(Scratch_file::open_named(out.temporary_path()));
+    file->write(layout.header.data(), layout.header.size(), 0);
+    const std::uint64_t n = log.points;
+    const std::size_t parts = writes_in_parts(in_path, settings)
+                            ? std::size_t(std::max<std::uint64_t>(1, std::min<std::uint64_t>(threads_allowed(), n / chunk_points))) : 1;
+    auto part = [&](std::size_t p, const std::function<void(double)>& part_progress) {
+      const std::uint64_t first = n * p / parts, end = n * (p + 1) / parts;
+      write_vertices(in_path, first, end, layout, records, s, settings, log.had_normals, *file,
+                     layout.header.size() + first * layout.vertex_bytes, part_progress);
+    };
+    std::vector<std::future<void> > others;
+    for(std::size_t p = 1; p < parts; ++p) others.push_back(std::async(std::launch::async, part, p, [](double) {}));
+    part(0, [&](double x) { progress(0.9 + 0.1 * x); });   // the parts progress alike
+    for(std::future<void>& f : others) f.get();
   }
   out.commit();
   log.write_seconds = seconds_since(tw);
@@ -1004,8 +1189,10 @@ namespace {
 // Staged runs: the files of a job folder.
 //   run            what the scan found (text: format, points, normals, passes)
 //   records        the scan's records
-//   pass-P.bins    the records of pass P binned by cell; pass-P.plan: the tiles; pass-P.tiles: their number (text)
+//   pass-P.bins    the records of pass P binned by cell; pass-P.plan: the tiles; pass-P.tiles: their number,
+//                  then the points of each (text)
 //   pass-P.tile-T  the results of tile T of pass P (in index order), then a Tile_trailer
+//   output         OUT's vertices written in parts (staged_write_part()), its header last; output.part-C-of-N: part C written
 // Every file is written under a temporary name and renamed when complete: a step run twice (a
 // worker lost and its task run again) writes the same file again.
 std::string job_path(const std::string& job, const std::string& name) { return job + "/" + name; }
@@ -1072,6 +1259,27 @@ Record_file tile_results(const std::string& job, const std::vector<Pass>& passes
   return f;
 }
 
+// The results of the last pass (the output's records); `log` gets the job's description and the passes' reports.
+Record_file last_results(const std::string& job, const Fit_settings& s, Streamed_run& log)
+{
+  const Job_info info = read_job(job);
+  log.format = info.format;
+  log.points = std::size_t(info.points);
+  log.had_normals = info.had_normals;
+  const std::vector<Pass> passes = passes_of(s, info.had_normals);
+  Record_file records;
+  for(std::size_t p = 0; p < passes.size(); ++p) records = tile_results(job, passes, p, log);
+  if(records.count != info.points)
+    throw std::runtime_error("the tiles hold " + std::to_string(records.count) + " points, the input " + std::to_string(info.points));
+  return records;
+}
+
+// A part of the output written: an empty file of this name.
+std::string output_part_path(const std::string& job, std::size_t part, std::size_t parts)
+{
+  return job_path(job, "output.part-" + std::to_string(part) + "-of-" + std::to_string(parts));
+}
+
 // Bins `in` for `pass` into the job folder.
 void bin_into_job(const std::string& job, std::size_t pass, Pass kind, const Record_file& in, const Fit_settings& s,
                   const Streaming_settings& settings)
@@ -1081,7 +1289,9 @@ void bin_into_job(const std::string& job, std::size_t pass, Pass kind, const Rec
   p.bin(in, std::shared_ptr<Scratch_file>(Scratch_file::open_named(bins.temporary_path())));
   bins.commit();
   p.save_plan(pass_path(job, pass, "plan"));
-  write_whole_file(pass_path(job, pass, "tiles"), std::to_string(p.number_of_tiles()) + "\n");
+  std::string tiles = std::to_string(p.number_of_tiles()) + "\n";
+  for(std::size_t t = 0; t < p.number_of_tiles(); ++t) tiles += std::to_string(p.points_of_tile(t)) + "\n";
+  write_whole_file(pass_path(job, pass, "tiles"), tiles);
 }
 
 // Runs `f` and names the job folder in the scratch files' errors (a full disk).
@@ -1098,11 +1308,10 @@ template <class F> auto in_job(const std::string& job, const F& f)
 
 } // namespace
 
-std::size_t staged_prepare(const std::string& in_path, const std::string& out_path, const std::string& job,
+std::size_t staged_prepare(const std::string& in_path, const std::string& job,
                            const Fit_settings& s, const Streaming_settings& settings)
 {
   return in_job(job, [&] {
-    if(output_format(out_path) != Output_format::PLY) throw File_error(out_path + ": a streamed run writes a .ply file");
     Streamed_run log;
     Output_file records(job_path(job, "records"));
     const std::shared_ptr<Scratch_file> file(Scratch_file::open_named(records.temporary_path()));
@@ -1111,7 +1320,8 @@ std::size_t staged_prepare(const std::string& in_path, const std::string& out_pa
     const std::vector<Pass> passes = passes_of(s, log.had_normals);
     bin_into_job(job, 0, passes[0], scanned, s, settings);
     write_whole_file(job_path(job, "run"), "format " + log.format + "\npoints " + std::to_string(log.points) + "\nnormals " +
-                                           std::to_string(int(log.had_normals)) + "\npasses " + std::to_string(passes.size()) + "\n");
+                                           std::to_string(int(log.had_normals)) + "\npasses " + std::to_string(passes.size()) +
+                                           "\nwrite_in_parts " + std::to_string(int(writes_in_parts(in_path, settings))) + "\n");
     return passes.size();
   });
 }
@@ -1161,17 +1371,50 @@ Streamed_run staged_write(const std::string& in_path, const std::string& out_pat
                           const Fit_settings& s, const Streaming_settings& settings, const Callback& progress)
 {
   return in_job(job, [&] {
-    const Job_info info = read_job(job);
     Streamed_run log;
-    log.format = info.format;
-    log.points = std::size_t(info.points);
-    log.had_normals = info.had_normals;
-    const std::vector<Pass> passes = passes_of(s, info.had_normals);
-    Record_file records;
-    for(std::size_t p = 0; p < passes.size(); ++p) records = tile_results(job, passes, p, log);
-    if(records.count != info.points)
-      throw std::runtime_error("the tiles hold " + std::to_string(records.count) + " points, the input " + std::to_string(info.points));
+    const Record_file records = last_results(job, s, log);
     write_output(in_path, out_path, s, settings, records, log, progress);
+    return log;
+  });
+}
+
+void staged_write_part(const std::string& in_path, const std::string& job, std::size_t part, std::size_t parts,
+                       const Fit_settings& s, const Streaming_settings& settings)
+{
+  in_job(job, [&] {
+    if(part >= parts) throw std::runtime_error("no part " + std::to_string(part) + " of " + std::to_string(parts));
+    if(!writes_in_parts(in_path, settings)) throw std::runtime_error("the output is written in parts only in binary from a binary PLY");
+    Streamed_run log;
+    const Record_file records = last_results(job, s, log);
+    const Output_layout layout = output_layout(in_path, s, settings, log.had_normals, log.points);
+    const std::uint64_t first = layout.points * part / parts, end = layout.points * (part + 1) / parts;
+    const std::unique_ptr<Scratch_file> out(Scratch_file::open_named(job_path(job, "output"), true));
+    write_vertices(in_path, first, end, layout, records, s, settings, log.had_normals, *out,
+                   layout.header.size() + first * layout.vertex_bytes, [](double) {});
+    write_whole_file(output_part_path(job, part, parts), "");
+    return 0;
+  });
+}
+
+Streamed_run staged_finish(const std::string& in_path, const std::string& out_path, const std::string& job, std::size_t parts,
+                           const Fit_settings& s, const Streaming_settings& settings)
+{
+  return in_job(job, [&] {
+    Streamed_run log;
+    last_results(job, s, log);   // the tiles' reports
+    const Output_layout layout = output_layout(in_path, s, settings, log.had_normals, log.points);
+    log.columns = layout.columns;
+    for(std::size_t p = 0; p < parts; ++p)
+      if(!std::ifstream(output_part_path(job, p, parts))) throw std::runtime_error("part " + std::to_string(p) + " of " + std::to_string(parts) + " of the output is not written");
+    const std::string written = job_path(job, "output");
+    {
+      const std::unique_ptr<Scratch_file> out(Scratch_file::open_named(written));
+      if(out->size() != layout.header.size() + layout.points * layout.vertex_bytes)
+        throw std::runtime_error(written + ": not the size of the output (not written in " + std::to_string(parts) + " parts?)");
+      out->write(layout.header.data(), layout.header.size(), 0);
+    }
+    if(std::rename(written.c_str(), out_path.c_str()) != 0)
+      throw File_error(out_path + ": cannot move " + written + " to it (" + std::strerror(errno) + "; the job folder must be on the output's file system)");
     return log;
   });
 }

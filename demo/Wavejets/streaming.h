@@ -36,7 +36,7 @@ struct Streamed_run
 std::size_t tile_size_for_memory(double bytes);
 
 /// Runs the command of `fit` on the point set of `in_path` (PLY, binary or ASCII, or XYZ / PWN) and
-/// writes `out_path` (PLY), holding one tile and its halo in memory at a time. Scratch files go
+/// writes `out_path` (PLY, whatever its extension: the caller checks it), holding one tile and its halo in memory at a time. Scratch files go
 /// next to `out_path` and are unlinked as soon as created (no exit leaves them behind); `out_path`
 /// is written through a temporary file renamed at the end. `progress` gets the fraction of the
 /// whole run done. Throws File_error for what the in-core run rejects (and for a mesh, a PLY with
@@ -52,7 +52,7 @@ Streamed_run run_streamed(const std::string& in_path, const std::string& out_pat
 /// to the caller to remove) and writes its files under temporary names, renamed when complete: a
 /// step run again (a lost worker's task) is harmless. Every step gets the same settings.
 /// Returns the number of passes.
-std::size_t staged_prepare(const std::string& in_path, const std::string& out_path, const std::string& job,
+std::size_t staged_prepare(const std::string& in_path, const std::string& job,
                            const Fit_settings& fit, const Streaming_settings& settings);
 /// The number of tiles of pass `pass` (once prepared or binned).
 std::size_t staged_tiles(const std::string& job, std::size_t pass);
@@ -62,6 +62,13 @@ void staged_bin(const std::string& job, std::size_t pass, const Fit_settings& fi
 /// The run's summary (without timings).
 Streamed_run staged_write(const std::string& in_path, const std::string& out_path, const std::string& job,
                           const Fit_settings& fit, const Streaming_settings& settings, const Callback& progress);
+/// Or OUT in `parts` steps, where the job's file `run` says `write_in_parts 1` (binary output of a
+/// binary PLY): staged_write_part(C, parts) for each C (independent tasks) writes the vertices of
+/// part C, then staged_finish() writes the header and moves the file to OUT.
+void staged_write_part(const std::string& in_path, const std::string& job, std::size_t part, std::size_t parts,
+                       const Fit_settings& fit, const Streaming_settings& settings);
+Streamed_run staged_finish(const std::string& in_path, const std::string& out_path, const std::string& job, std::size_t parts,
+                           const Fit_settings& fit, const Streaming_settings& settings);
 
 } // namespace wavejets_demo
 

@@ -120,7 +120,7 @@ const Flag_info flags[] = {
   {"--max-memory", "SIZE", FITS, "stream a point set larger than memory (PLY or XYZ): process it in spatial tiles sized for about SIZE of memory (e.g. 2G, 500M); the output is the same, byte for byte"},
   {"--tile-size", "N", FITS, "stream in tiles of at most N points (instead of --max-memory)"},
   {"--job", "DIR", FITS, "run one step of a streamed run (--stage), sharing the folder DIR with the other steps: how python3 -m wavejets.distributed spreads a run over processes or machines"},
-  {"--stage", "STEP", FITS, "with --job: prepare (read IN, bin the first pass), tile:P:T (tile T of pass P), bin:P (bin pass P from pass P-1's tiles) or write (OUT from the last pass's tiles)"},
+  {"--stage", "STEP", FITS, "with --job: prepare (read IN, bin the first pass), tile:P:T (tile T of pass P), bin:P (bin pass P from pass P-1's tiles), write (OUT from the last pass's tiles), or write:C:N (part C of N of OUT's vertices; binary output of a binary PLY) then finish:N (OUT from the N parts)"},
   {"--threads", "N", FITS | RENDER, "worker threads (default: all cores; 1: sequential, same results)"},
   {"--ascii", "", FITS, "write ASCII PLY (default: binary little-endian PLY, doubles)"},
   {"--width", "W", RENDER, "image width in pixels, all panels together (default 800 per panel)"},
@@ -685,11 +685,11 @@ int run_stage(const Options& o, const wavejets_demo::Fit_settings& s, const wave
   const std::string& stage = o.stage;
   auto number = [&](const std::string& text) {
     if(text.empty() || text.find_first_not_of("0123456789") != std::string::npos)
-      throw Usage_error("--stage " + stage + ": expected prepare, tile:P:T, bin:P or write");
+      throw Usage_error("--stage " + stage + ": expected prepare, tile:P:T, bin:P, write, write:C:N or finish:N");
     return std::size_t(std::stoull(text));
   };
   if(stage == "prepare") {
-    const std::size_t passes = wavejets_demo::staged_prepare(in_path, out_path, o.job, s, settings);
+    const std::size_t passes = wavejets_demo::staged_prepare(in_path, o.job, s, settings);
     if(!o.quiet) std::cout << "prepared " << o.job << ": " << passes << " passes, " << wavejets_demo::staged_tiles(o.job, 0)
                            << " tiles in the first" << std::endl;
   } else if(stage.compare(0, 5, "tile:") == 0) {
@@ -698,8 +698,14 @@ int run_stage(const Options& o, const wavejets_demo::Fit_settings& s, const wave
     wavejets_demo::staged_tile(o.job, number(stage.substr(5, colon - 5)), number(stage.substr(colon + 1)), s, settings);
   } else if(stage.compare(0, 4, "bin:") == 0) {
     wavejets_demo::staged_bin(o.job, number(stage.substr(4)), s, settings);
-  } else if(stage == "write") {
-    const wavejets_demo::Streamed_run run = wavejets_demo::staged_write(in_path, out_path, o.job, s, settings, progress.stage("writing"));
+  } else if(stage.compare(0, 6, "write:") == 0) {
+    const std::size_t colon = stage.find(':', 6);
+    if(colon == std::string::npos) throw Usage_error("--stage " + stage + ": expected write:C:N");
+    wavejets_demo::staged_write_part(in_path, o.job, number(stage.substr(6, colon - 6)), number(stage.substr(colon + 1)), s, settings);
+  } else if(stage == "write" || stage.compare(0, 7, "finish:") == 0) {
+    const wavejets_demo::Streamed_run run =
+      stage == "write" ? wavejets_demo::staged_write(in_path, out_path, o.job, s, settings, progress.stage("writing"))
+                       : wavejets_demo::staged_finish(in_path, out_path, o.job, number(stage.substr(7)), s, settings);
     progress.done();
     if(!o.quiet) std::cout << streamed_summary(o, s, settings, n, order, run, 0.) << std::endl;
   } else number("");

@@ -51,14 +51,33 @@ def no_job_left(folder):
     return not [p for p in os.listdir(folder) if p.startswith(".wavejets-job-") or ".tmp-" in p]
 
 
+def run_counting_steps(*args, client, **kwargs):
+    """wd.run(*args, ...): its summary, the number of tiles run, and of the tool's steps after prepare
+    (tiles, parts of the output, finish or write)."""
+    tiles = []
+    with distributed.get_task_stream(client) as stream:
+        summary = wd.run(*args, client=client, progress=False, timeout=TIMEOUT, _on_tile_done=tiles.append, **kwargs)
+    steps = sum(1 for task in stream.data if task["key"].startswith("_step-"))
+    return summary, len(tiles), steps
+
+
 @pytest.mark.parametrize("command", ["normals", "curvature", "enhance-positions", "enhance-normals"])
 def test_same_bytes_as_in_core(client, torus_200k, tmp_path, command):
     expected = in_core(command, torus_200k, tmp_path / "in_core.ply", "--k", "18")
-    summary = wd.run(command, torus_200k, tmp_path / "out.ply", "--k", "18", client=client, tile_size=30000,
-                     progress=False, timeout=TIMEOUT)
+    summary, tiles, steps = run_counting_steps(command, torus_200k, tmp_path / "out.ply", "--k", "18", client=client,
+                                               tile_size=30000)
     assert (tmp_path / "out.ply").read_bytes() == expected
     assert "the same bytes as in memory" in summary and "200000 points" in summary
     assert no_job_left(tmp_path)
+    assert steps == tiles + 3, "binary PLY in and out: the output in a part per worker (2), then finish"
+
+
+def test_ascii_output_in_one_step(client, torus_200k, tmp_path):
+    expected = in_core("normals", torus_200k, tmp_path / "in_core.ply", "--k", "18", "--ascii")
+    summary, tiles, steps = run_counting_steps("normals", torus_200k, tmp_path / "out.ply", "--k", "18", "--ascii",
+                                               client=client, tile_size=30000)
+    assert (tmp_path / "out.ply").read_bytes() == expected
+    assert steps == tiles + 1, "ASCII output: written by one step"
 
 
 def test_three_passes_without_normals(client, kitten_path, tmp_path):

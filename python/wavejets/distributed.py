@@ -2,7 +2,8 @@
 
 ``run("normals", "scan.ply", "out.ply", "--k", "18")`` runs what ``wavejets normals scan.ply
 out.ply --k 18 --max-memory 2G`` runs, in steps that are Dask tasks: reading and binning the input,
-then every tile of every pass (independent tasks, spread over the workers), then writing OUT. OUT
+then every tile of every pass (independent tasks, spread over the workers), then writing OUT (in a
+part per worker, for binary output of a binary PLY). OUT
 is the in-core run's file, byte for byte, however many workers and whatever fails and is run again.
 
 The files (IN, OUT and a job folder of scratch files created next to OUT, removed at the end) must
@@ -32,6 +33,7 @@ from ._wavejets import _keep_freed_memory_for_reuse, _run_tool
 __all__ = ["run", "main"]
 
 COMMANDS = ("normals", "curvature", "enhance-positions", "enhance-normals")
+_WRITE_PART_POINTS = 1 << 16   # the least points of a part of the output written by one worker
 
 
 class DistributedRunError(RuntimeError):
@@ -64,7 +66,7 @@ _chdir_lock = threading.Lock()
 def _step(args, stage, cwd):
     """One step of the run in a worker: the tool with --stage STAGE; the tool's output, or an error."""
     argv = list(args) + ["--stage", stage, "--threads", str(_worker_threads())]
-    if stage != "write":
+    if stage != "write" and not stage.startswith("finish:"):
         argv.append("--quiet")
     _keep_freed_memory_for_reuse()   # the worker runs the tool's steps, buffers of megabytes each
     with _chdir_lock:   # relative paths are the caller's (the tool runs one call at a time anyway)
@@ -94,9 +96,22 @@ def _read_number(path, key=None):
     raise DistributedRunError("%s: no %s" % (path, key or "number"))
 
 
+def _tiles_largest_first(job, p):
+    """The tiles of pass `p`, the largest first: Dask runs them in this order, so that the last ones
+    to run, while other workers may have nothing left to do, are the smallest."""
+    path = os.path.join(job, "pass-%d.tiles" % p)
+    with open(path) as f:
+        numbers = [int(w) for w in f.read().split()]
+    if not numbers or len(numbers) != numbers[0] + 1:
+        raise DistributedRunError("%s: not a list of tiles" % path)
+    return sorted(range(numbers[0]), key=lambda t: -numbers[1 + t])
+
+
 def _prepare(args, cwd, job):
     _step(args, "prepare", cwd)
-    return _read_number(os.path.join(job, "run"), "passes"), _read_number(os.path.join(job, "pass-0.tiles"))
+    description = os.path.join(job, "run")
+    return (_read_number(description, "passes"), _read_number(os.path.join(job, "pass-0.tiles")),
+            _read_number(description, "points"), _read_number(description, "write_in_parts"))
 
 
 def _bin(args, cwd, job, p):
@@ -155,14 +170,14 @@ def run(command, input, output, *flags, client=None, scheduler=None, workers=Non
     try:
         if progress and client.dashboard_link:
             print("wavejets.distributed: Dask dashboard at %s" % client.dashboard_link, file=sys.stderr)
-        passes, tiles = client.submit(_prepare, args, cwd, job, pure=False).result(timeout)
+        passes, tiles, points, in_parts = client.submit(_prepare, args, cwd, job, pure=False).result(timeout)
         if _on_prepared is not None:
             _on_prepared(job)
         for p in range(passes):
             if p > 0:
                 tiles = client.submit(_bin, args, cwd, job, p, pure=False).result(timeout)
-            futures = client.map(_step, [args] * tiles, ["tile:%d:%d" % (p, t) for t in range(tiles)], [cwd] * tiles,
-                                 pure=False)
+            futures = client.map(_step, [args] * tiles, ["tile:%d:%d" % (p, t) for t in _tiles_largest_first(job, p)],
+                                 [cwd] * tiles, pure=False)
             if _on_tile_done is not None:
                 for fut in futures:
                     fut.add_done_callback(_on_tile_done)
@@ -172,7 +187,16 @@ def run(command, input, output, *flags, client=None, scheduler=None, workers=Non
                 print(file=sys.stderr)
             wait(futures, timeout=timeout)
             client.gather(futures)   # raises the first failed tile's error
-        return client.submit(_step, args, "write", cwd, pure=False).result(timeout)
+        # OUT: in one step, or (binary output of a binary PLY) in a part per worker, each part at its
+        # place in the file, then the header.
+        parts = min(len(client.scheduler_info()["workers"]), points // _WRITE_PART_POINTS) if in_parts else 0
+        if parts < 2:
+            return client.submit(_step, args, "write", cwd, pure=False).result(timeout)
+        futures = client.map(_step, [args] * parts, ["write:%d:%d" % (c, parts) for c in range(parts)], [cwd] * parts,
+                             pure=False)
+        wait(futures, timeout=timeout)
+        client.gather(futures)
+        return client.submit(_step, args, "finish:%d" % parts, cwd, pure=False).result(timeout)
     except BaseException:
         client.cancel(futures)   # the other tiles of a failed pass: nothing is left running on the job folder
         raise

@@ -393,6 +393,17 @@ cli_case_streamed_identical() {
   grep -q "the same bytes as in memory" summary.txt || fail "no streamed summary: $(cat summary.txt)"
 }
 
+cli_case_streamed_write_in_parts() {
+  # 300,000 points in binary PLY: the output in two parts, written by two threads at their places
+  # in the file, directly (the tool's own PLY: x y z nx ny nz fitted) or by CGAL's writer (float
+  # coordinates, another column between them and the normals).
+  awk 'BEGIN { srand(5); for(i = 0; i < 300000; ++i) { x = rand(); y = rand(); printf "%.9f %.9f %.9f 0 0 1\n", x, y, 0.05 * sin(9 * x) * cos(7 * y) } }' > wave.xyz
+  "$wj" normals wave.xyz wave.ply -q --k 12 --threads 2 || fail "normals of wave.xyz failed"
+  "$check" binary_ply wave.xyz wave_column.ply float little > /dev/null || fail "binary_ply float little"
+  same_as_in_core parts_direct 100000 -- enhance-positions wave.ply --k 12 --threads 2
+  same_as_in_core parts_cgal 100000 -- curvature wave_column.ply --k 12 --threads 2
+}
+
 cli_case_streamed_hard_input() {
   # The kitten with 40 points repeated 50 times each and a cluster of 5000 points (10^-3 apart)
   # straddling the middle of the model: duplicates, and a density 1000x the rest across tiles.
@@ -436,25 +447,51 @@ cli_case_streamed_errors() {
   [ -z "$(ls -A | grep -e '.tmp-' -e scratch)" ] || fail "disk full: temporary files left: $(ls -A)"
 }
 
-cli_case_streamed_staged() {
-  # The steps of a streamed run as separate processes sharing a job folder (the tasks of
-  # wavejets.distributed): the in-core bytes, with the tiles run in any order and one run twice.
-  "$wj" enhance-positions "$kitten" in_staged.ply -q --k 24 || fail "in-core run failed"
-  mkdir -p job
-  local flags=(enhance-positions "$kitten" st_staged.ply -q --k 24 --tile-size 700 --job job) p t tiles passes
+# The steps of a streamed run by hand, sharing the job folder $1 (the tasks of wavejets.distributed):
+# the tiles in reverse order and one of them twice, then OUT in one step ($2 = 0) or in $2 parts
+# (in reverse order, one twice, then finish). The other arguments: the command's.
+staged_run() {
+  local job=$1 parts=$2 p t c tiles passes
+  shift 2
+  local flags=("$@" -q --job "$job")
+  mkdir -p "$job"
   run "${flags[@]}" --stage prepare || fail "prepare failed"
-  passes=$(awk '$1 == "passes" { print $2 }' job/run)
-  [ "$passes" = 2 ] || fail "enhance-positions on a point set with normals: 2 passes, not '$passes'"
+  passes=$(awk '$1 == "passes" { print $2 }' "$job/run")
   for p in $(seq 0 $((passes - 1))); do
     [ "$p" -eq 0 ] || run "${flags[@]}" --stage "bin:$p" || fail "bin:$p failed"
-    tiles=$(cat "job/pass-$p.tiles")
+    tiles=$(head -1 "$job/pass-$p.tiles")
     [ "$tiles" -gt 3 ] || fail "pass $p: $tiles tiles"
     for t in $(seq $((tiles - 1)) -1 0); do run "${flags[@]}" --stage "tile:$p:$t" || fail "tile:$p:$t failed"; done
     run "${flags[@]}" --stage "tile:$p:1" || fail "tile:$p:1 run again failed"
   done
-  run "${flags[@]}" --stage write || fail "write failed"
+  if [ "$parts" -eq 0 ]; then
+    run "${flags[@]}" --stage write || fail "write failed"
+    return
+  fi
+  for c in $(seq $((parts - 1)) -1 0); do run "${flags[@]}" --stage "write:$c:$parts" || fail "write:$c:$parts failed"; done
+  run "${flags[@]}" --stage "write:0:$parts" || fail "write:0:$parts run again failed"
+  run "${flags[@]}" --stage "finish:$parts" || fail "finish:$parts failed"
+}
+
+cli_case_streamed_staged() {
+  # An XYZ input: OUT in one step.
+  "$wj" enhance-positions "$kitten" in_staged.ply -q --k 24 || fail "in-core run failed"
+  staged_run job 0 enhance-positions "$kitten" st_staged.ply --k 24 --tile-size 700
+  [ "$(awk '$1 == "passes" { print $2 }' job/run)" = 2 ] || fail "enhance-positions on a point set with normals: not 2 passes"
   cmp -s in_staged.ply st_staged.ply || fail "staged output differs from the in-core one"
-  # A step whose inputs are missing, a step that does not exist: clear errors.
+  # Binary PLY in and out: OUT in parts, written directly (x y z nx ny nz fitted) or by CGAL's
+  # writer (a uchar column between the coordinates and the normals).
+  "$wj" normals "$kitten" k.ply -q || fail "normals of the kitten failed"
+  "$wj" enhance-positions k.ply in_parts.ply -q --k 24 || fail "in-core run failed"
+  staged_run job_parts 3 enhance-positions k.ply st_parts.ply --k 24 --tile-size 700
+  cmp -s in_parts.ply st_parts.ply || fail "output in parts differs from the in-core one"
+  "$check" binary_ply "$kitten" bin_float_little.ply float little > /dev/null || fail "binary_ply float little"
+  "$wj" curvature bin_float_little.ply in_column.ply -q || fail "in-core run failed"
+  staged_run job_column 2 curvature bin_float_little.ply st_column.ply --tile-size 700
+  cmp -s in_column.ply st_column.ply || fail "output in parts (another column) differs from the in-core one"
+  # Steps whose inputs are missing, steps that do not exist or do not apply: clear errors.
+  expect_error "part 0 of 4 of the output is not written" st_bad.ply -- curvature bin_float_little.ply st_bad.ply --job job_column --stage finish:4
+  expect_error "in parts only in binary" st_bad.ply -- enhance-positions "$kitten" st_bad.ply --k 24 --job job --stage write:0:2
   mkdir -p empty_job
   expect_error empty_job st_empty.ply -- normals "$kitten" st_empty.ply --job empty_job --stage write
   expect_error "tile:0" st_bad.ply -- normals "$kitten" st_bad.ply --job job --stage tile:0
