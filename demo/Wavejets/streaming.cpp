@@ -492,7 +492,7 @@ public:
       if(!v.empty()) b.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(v[0]));
     };
     pod(plan_magic); pod(count_); pod(bounds_); pod(grid_);
-    vec(tiles_); vec(cell_first_); vec(cell_count_); vec(tile_first_); vec(tile_of_); vec(tile_box_);
+    vec(tiles_); vec(cells_); vec(tile_first_); vec(tile_box_);
     write_whole_file(path, b);
   }
   void load_plan(const std::string& path, std::shared_ptr<Scratch_file> bins)
@@ -516,7 +516,7 @@ public:
     pod(magic);
     if(magic != plan_magic) throw std::runtime_error(path + ": not a pass plan of this version");
     pod(count_); pod(bounds_); pod(grid_);
-    vec(tiles_); vec(cell_first_); vec(cell_count_); vec(tile_first_); vec(tile_of_); vec(tile_box_);
+    vec(tiles_); vec(cells_); vec(tile_first_); vec(tile_box_);
     bins_ = std::move(bins);
   }
 
@@ -542,10 +542,8 @@ public:
     for_each_input(in, [&](const Record& r) { ++counts[grid_.cell_of(r.position)]; });
     Cell_box all{{0, 0, 0}, {grid_.n[0], grid_.n[1], grid_.n[2]}, count_};
     split_tiles(grid_, counts, all, tile_size_, tiles_);
-    // Cells in tile order: a tile's records are contiguous in the bins, each cell's too.
-    cell_first_.assign(grid_.size(), 0);
-    tile_of_.assign(grid_.size(), 0);
-    std::vector<std::uint32_t>& tile_of = tile_of_;
+    // Cells in tile order: a tile's records are contiguous in the bins, each cell's too. The
+    // occupied cells are kept (by cell number), and `counts` becomes each cell's place among them.
     std::uint64_t next = 0;
     for(std::size_t t = 0; t < tiles_.size(); ++t) {
       tile_first_.push_back(next);
@@ -554,13 +552,15 @@ public:
         for(long y = b.lo[1]; y < b.hi[1]; ++y)
           for(long z = b.lo[2]; z < b.hi[2]; ++z) {
             const std::size_t c = std::size_t((x * grid_.n[1] + y) * grid_.n[2] + z);
-            cell_first_[c] = next;
-            tile_of[c] = std::uint32_t(t);
+            if(counts[c] == 0) continue;
+            cells_.push_back(Occupied_cell{next, counts[c], std::uint32_t(c), std::uint32_t(t)});
             next += counts[c];
           }
     }
     tile_first_.push_back(next);
-    cell_count_ = std::move(counts);
+    std::sort(cells_.begin(), cells_.end(), [](const Occupied_cell& a, const Occupied_cell& b) { return a.cell < b.cell; });
+    std::vector<std::uint64_t>& place = counts;
+    for(std::size_t i = 0; i < cells_.size(); ++i) place[cells_[i].cell] = i;
     // Each tile buffers its records (and their cells), then writes them at their cells' next places.
     // 64 MB of buffers in all, at least 64 records per tile.
     const std::size_t per_tile = std::max<std::size_t>(64, (std::size_t(64) << 20) / sizeof(Record) / tiles_.size());
@@ -571,7 +571,8 @@ public:
     std::vector<std::vector<Record> > buffers(tiles_.size());
     std::vector<std::vector<std::uint32_t> > buffer_cells(tiles_.size());
     tile_box_.assign(tiles_.size(), CGAL::Bbox_3());
-    std::vector<std::uint64_t> cursor = cell_first_, placed;
+    std::vector<std::uint64_t> cursor(cells_.size()), placed;
+    for(std::size_t i = 0; i < cells_.size(); ++i) cursor[i] = cells_[i].first;
     std::vector<char> bytes;
     auto flush = [&](std::size_t t) {
       std::vector<Record>& buffer = buffers[t];
@@ -591,8 +592,8 @@ public:
       buffer_cells[t].clear();
     };
     for_each_input(in, [&](const Record& r) {
-      const std::size_t cell = grid_.cell_of(r.position);
-      const std::uint32_t t = tile_of[cell];
+      const std::size_t cell = std::size_t(place[grid_.cell_of(r.position)]);
+      const std::uint32_t t = cells_[cell].tile;
       tile_box_[t] += CGAL::Bbox_3(r.position[0], r.position[1], r.position[2], r.position[0], r.position[1], r.position[2]);
       std::vector<Record>& buffer = buffers[t];
       if(buffer.empty()) { buffer.reserve(per_tile); buffer_cells[t].reserve(per_tile); }
@@ -604,7 +605,7 @@ public:
   }
 
 private:
-  static constexpr std::uint64_t plan_magic = 0x57564a5053504c31ull;   // "WVJPSPL1"
+  static constexpr std::uint64_t plan_magic = 0x57564a5053504c32ull;   // "WVJPSPL2"
 
   template <class F> static void for_each_input(const Record_file& in, const F& f)
   {
@@ -658,26 +659,31 @@ private:
       from[a] = grid_.cell_index(grown_lo, a);
       to[a] = grid_.cell_index(grown_hi, a) + 1;
     }
+    // The occupied cells of the box: for each row of cells along z, those between its ends.
+    std::vector<const Occupied_cell*> occupied;
     std::uint64_t count = 0;
+    auto by_cell = [](const Occupied_cell& c, std::uint64_t cell) { return c.cell < cell; };
     for(long x = from[0]; x < to[0]; ++x)
-      for(long y = from[1]; y < to[1]; ++y)
-        for(long z = from[2]; z < to[2]; ++z) count += cell_count_[std::size_t((x * grid_.n[1] + y) * grid_.n[2] + z)];
+      for(long y = from[1]; y < to[1]; ++y) {
+        const std::uint64_t row = std::uint64_t((x * grid_.n[1] + y) * grid_.n[2]);
+        for(auto c = std::lower_bound(cells_.begin(), cells_.end(), row + std::uint64_t(from[2]), by_cell);
+            c != cells_.end() && c->cell < row + std::uint64_t(to[2]); ++c) {
+          occupied.push_back(&*c);
+          count += c->count;
+        }
+      }
     std::vector<Record> found;
     found.reserve(std::size_t(count));
     std::vector<Record> cell;
-    for(long x = from[0]; x < to[0]; ++x)
-      for(long y = from[1]; y < to[1]; ++y)
-        for(long z = from[2]; z < to[2]; ++z) {
-          const std::size_t c = std::size_t((x * grid_.n[1] + y) * grid_.n[2] + z);
-          if(cell_count_[c] == 0) continue;
-          cell.resize(std::size_t(cell_count_[c]));
-          bins_->read(cell.data(), cell.size() * sizeof(Record), cell_first_[c] * sizeof(Record));
-          for(const Record& r : cell) {
-            bool inside = true;
-            for(int a = 0; a < 3; ++a) inside = inside && r.position[a] >= lo[a] && r.position[a] <= hi[a];
-            if(inside) found.push_back(r);
-          }
-        }
+    for(const Occupied_cell* c : occupied) {
+      cell.resize(std::size_t(c->count));
+      bins_->read(cell.data(), cell.size() * sizeof(Record), c->first * sizeof(Record));
+      for(const Record& r : cell) {
+        bool inside = true;
+        for(int a = 0; a < 3; ++a) inside = inside && r.position[a] >= lo[a] && r.position[a] <= hi[a];
+        if(inside) found.push_back(r);
+      }
+    }
     sort_by_index(found);
     return found;
   }
@@ -713,8 +719,15 @@ private:
     g.extent = CGAL::Bbox_3(box.xmin() - h, box.ymin() - h, box.zmin() - h, box.xmax() + h, box.ymax() + h, box.zmax() + h);
     g.points = points_in(g.extent);
     g.targets.reserve(tile_points);
-    for(std::size_t i = 0; i < g.points.size(); ++i)
-      if(tile_of_[grid_.cell_of(g.points[i].position)] == t) g.targets.push_back(i);
+    const Cell_box& cells = tiles_[t];   // the tile's points: those of its cells
+    for(std::size_t i = 0; i < g.points.size(); ++i) {
+      bool own = true;
+      for(int a = 0; a < 3; ++a) {
+        const long c = grid_.cell_index(g.points[i].position, a);
+        own = own && c >= cells.lo[a] && c < cells.hi[a];
+      }
+      if(own) g.targets.push_back(i);
+    }
     if(g.targets.size() != tile_points) throw std::logic_error("streamed run: a tile's point is missing from its own extent");
     return g;
   }
@@ -837,8 +850,14 @@ private:
   CGAL::Bbox_3 bounds_;       // of all of them
   Grid grid_;
   std::vector<Cell_box> tiles_;
-  std::vector<std::uint64_t> cell_first_, cell_count_, tile_first_;
-  std::vector<std::uint32_t> tile_of_;   // per cell
+  // An occupied cell of the grid: where its records are in the bins, its number, its tile.
+  struct Occupied_cell
+  {
+    std::uint64_t first, count;
+    std::uint32_t cell, tile;
+  };
+  std::vector<Occupied_cell> cells_;   // by increasing cell number
+  std::vector<std::uint64_t> tile_first_;
   std::vector<CGAL::Bbox_3> tile_box_;   // of each tile's points
   std::shared_ptr<Scratch_file> bins_;
   std::uint64_t done_points_ = 0, rerun_ = 0;
