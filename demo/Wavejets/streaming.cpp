@@ -232,6 +232,17 @@ struct Record
   double position[3], normal[3];
   std::uint64_t fitted;
 };
+// The record of the input's point `index`: its position and normal (zero where `normal` is null), fitted 0.
+Record input_record(std::uint64_t index, const double* position, const double* normal)
+{
+  Record r;
+  std::memset(&r, 0, sizeof r);
+  r.index = index;
+  std::memcpy(r.position, position, sizeof r.position);
+  if(normal) std::memcpy(r.normal, normal, sizeof r.normal);
+  return r;
+}
+
 // A point after the command's pass: with the curvature command, its curvature columns too.
 struct Result
 {
@@ -612,16 +623,9 @@ private:
     if(!in.input.empty()) {
       Input_chunks chunks(in.input);
       std::vector<double> v;
-      Record r;
-      std::memset(&r, 0, sizeof r);
       std::uint64_t index = 0;
       while(chunks.next_values(v, chunk_points))
-        for(std::size_t i = 0; i < v.size(); i += 6) {
-          r.index = index++;
-          std::memcpy(r.position, &v[i], sizeof r.position);
-          std::memcpy(r.normal, &v[i + 3], sizeof r.normal);
-          f(r);
-        }
+        for(std::size_t i = 0; i < v.size(); i += 6) f(input_record(index++, &v[i], &v[i + 3]));
       if(index != in.count)
         throw File_error(in.input + ": changed while it was read (" + std::to_string(index) + " points read again, " + std::to_string(in.count) + " before)");
       return;
@@ -878,12 +882,9 @@ Record_file scan(const std::string& in_path, const std::shared_ptr<Scratch_file>
   auto add = [&](double x, double y, double z, const double* normal) {
     if(!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z))
       throw File_error(in_path + ": point " + std::to_string(f.count) + " has a NaN or infinite coordinate (remove such points first)");
-    Record r;
-    std::memset(&r, 0, sizeof r);
-    r.index = f.count;
-    r.position[0] = x; r.position[1] = y; r.position[2] = z;
+    const double position[3] = {x, y, z};
+    const Record r = input_record(f.count, position, normal);
     if(normal) {
-      r.normal[0] = normal[0]; r.normal[1] = normal[1]; r.normal[2] = normal[2];
       const double l = normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2];
       any_normal = any_normal || (std::isfinite(l) && l > 0);
     }
@@ -986,6 +987,9 @@ void fill_chunk(Point_set& chunk, const Fit_settings& s, bool had_normals, const
   }
 }
 
+// Where the vertices start in a PLY written by ply_text().
+std::size_t ply_body_offset(const std::string& ply) { return ply.find("end_header\n") + 11; }
+
 // The output's PLY header and the bytes of each vertex.
 struct Output_layout
 {
@@ -1004,7 +1008,7 @@ Output_layout output_layout(const std::string& in_path, const Fit_settings& s, c
   if(chunk.empty()) throw File_error(in_path + ": changed while it was read (no point read again)");
   fill_chunk(chunk, s, had_normals, std::vector<Result>(chunk.size()));
   const std::string text = ply_text(chunk, settings.ascii, settings.comment);
-  const std::size_t body = text.find("end_header\n") + 11;
+  const std::size_t body = ply_body_offset(text);
   Output_layout l;
   l.points = points;
   l.header = text.substr(0, body);
@@ -1113,7 +1117,7 @@ void write_vertices(const std::string& in_path, std::uint64_t first, std::uint64
       merge.next(at, values);
       fill_chunk(chunk, s, had_normals, values);
       const std::string text = ply_text(chunk, settings.ascii, settings.comment);
-      bytes.assign(text, text.find("end_header\n") + 11, std::string::npos);
+      bytes.assign(text, ply_body_offset(text), std::string::npos);
       if(direct) {
         direct_bytes.clear();
         std::size_t j = 0;
