@@ -107,16 +107,18 @@ def _tiles_largest_first(job, p):
     return sorted(range(numbers[0]), key=lambda t: -numbers[1 + t])
 
 
+# The steps below run in a worker and return what the client needs to know of the job's files:
+# the client reads none of them itself.
 def _prepare(args, cwd, job):
     _step(args, "prepare", cwd)
     description = os.path.join(job, "run")
-    return (_read_number(description, "passes"), _read_number(os.path.join(job, "pass-0.tiles")),
+    return (_read_number(description, "passes"), _tiles_largest_first(job, 0),
             _read_number(description, "points"), _read_number(description, "write_in_parts"))
 
 
 def _bin(args, cwd, job, p):
     _step(args, "bin:%d" % p, cwd)
-    return _read_number(os.path.join(job, "pass-%d.tiles" % p))
+    return _tiles_largest_first(job, p)
 
 
 def _remove_job(job, timeout):
@@ -176,13 +178,13 @@ def run(command, input, output, *flags, client=None, scheduler=None, workers=Non
         for p in range(passes):
             if p > 0:
                 tiles = client.submit(_bin, args, cwd, job, p, pure=False).result(timeout)
-            futures = client.map(_step, [args] * tiles, ["tile:%d:%d" % (p, t) for t in _tiles_largest_first(job, p)],
-                                 [cwd] * tiles, pure=False)
+            futures = client.map(_step, [args] * len(tiles), ["tile:%d:%d" % (p, t) for t in tiles],
+                                 [cwd] * len(tiles), pure=False)
             if _on_tile_done is not None:
                 for fut in futures:
                     fut.add_done_callback(_on_tile_done)
             if progress:
-                print("wavejets.distributed: pass %d of %d, %d tiles" % (p + 1, passes, tiles), file=sys.stderr)
+                print("wavejets.distributed: pass %d of %d, %d tiles" % (p + 1, passes, len(tiles)), file=sys.stderr)
                 dask_progress(futures)
                 print(file=sys.stderr)
             wait(futures, timeout=timeout)
