@@ -24,6 +24,7 @@
 #include <CGAL/wavejet_estimate_curvatures.h>
 #include <CGAL/wavejet_enhance_positions.h>
 #include <CGAL/wavejet_enhance_normals.h>
+#include <CGAL/wavejet_estimate_scales.h>
 #include <CGAL/Wavejet_fitting.h>
 
 #include <algorithm>
@@ -1035,6 +1036,177 @@ static void test_neighborhood_center_and_written_normals()
   }
 }
 
+
+// ---------------------------------------------------------------------------------------------
+// 8. Per-point scales: neighborhood_size_map and order_map, wavejet_estimate_scales.
+// ---------------------------------------------------------------------------------------------
+
+// 8a. A point fitted with its own k and order (the maps) gets, bitwise, what a run of the whole set
+// at that k and order gives it: normals and mean curvatures on the kitten, three k (one given as 0,
+// the positional k) and two orders spread over the points; in core, tiled (tile_size 500) and
+// Parallel_tag alike. Bad map values are errors.
+static void test_per_point_maps(const PV_range& kitten)
+{
+  Point_map pm;
+  Normal_map nm;
+  const std::size_t N = kitten.size();
+  const unsigned int ks[3] = {12, 30, 0}, positional_k = 20;
+  const std::size_t orders[2] = {3, 0}, default_order = 2;
+  std::vector<unsigned int> k_of(N);
+  std::vector<std::size_t> order_of(N);
+  for(std::size_t i = 0; i < N; ++i) { k_of[i] = ks[i % 3]; order_of[i] = orders[(i / 3) % 2]; }
+
+  // The maps are keyed by the elements of the range they are given with (slot_map: by address).
+  struct Outputs { PV_range normals; std::vector<double> H; };
+  auto run = [&](auto tag, unsigned int k, auto np, bool per_point) {
+    Outputs o{kitten, {}};
+    PV_range with_normals = kitten;
+    std::vector<unsigned int> k1 = k_of, k2 = k_of;
+    std::vector<std::size_t> o1 = order_of, o2 = order_of;
+    if(per_point)
+    {
+      CGAL::wavejet_estimate_normals<decltype(tag)>(o.normals, k, WJP::neighborhood_size_map(slot_map(o.normals, k1))
+        .order_map(slot_map(o.normals, o1)).tile_size(np.tile_size).point_map(pm).normal_map(nm));
+      CGAL::wavejet_estimate_curvatures<decltype(tag)>(with_normals, k, WJP::neighborhood_size_map(slot_map(with_normals, k2))
+        .order_map(slot_map(with_normals, o2)).tile_size(np.tile_size).mean_curvature_map(slot_map(with_normals, o.H))
+        .point_map(pm).normal_map(nm));
+    }
+    else
+    {
+      CGAL::wavejet_estimate_normals<decltype(tag)>(o.normals, k, WJP::order(np.order).point_map(pm).normal_map(nm));
+      CGAL::wavejet_estimate_curvatures<decltype(tag)>(with_normals, k, WJP::order(np.order)
+        .mean_curvature_map(slot_map(with_normals, o.H)).point_map(pm).normal_map(nm));
+    }
+    return o;
+  };
+  struct Settings { std::size_t order; std::size_t tile_size; };
+  const Outputs mixed = run(Seq(), positional_k, Settings{0, 0}, true);
+  std::size_t compared = 0, differ = 0;
+  for(unsigned int kc = 0; kc < 3; ++kc)
+    for(unsigned int oc = 0; oc < 2; ++oc)
+    {
+      const unsigned int k = ks[kc] ? ks[kc] : positional_k;
+      const std::size_t order = orders[oc] ? orders[oc] : default_order;
+      const Outputs single = run(Seq(), k, Settings{order, 0}, false);
+      for(std::size_t i = 0; i < N; ++i)
+        if(i % 3 == kc && (i / 3) % 2 == oc)
+        {
+          ++compared;
+          differ += !(same_bits(mixed.normals[i].second, single.normals[i].second) && same_bits(mixed.H[i], single.H[i]));
+        }
+    }
+  report("8a. per-point k and order == a run at that k and order (bitwise, normals and H, kitten)",
+         compared == N && differ == 0, std::to_string(differ) + " of " + std::to_string(compared) + " points differ");
+
+  const Outputs parallel = run(Par(), positional_k, Settings{0, 0}, true);
+  const Outputs tiled = run(Seq(), positional_k, Settings{0, 500}, true);
+  bool same = true;
+  for(std::size_t i = 0; i < N; ++i)
+    same = same && same_bits(parallel.normals[i].second, mixed.normals[i].second) && same_bits(parallel.H[i], mixed.H[i]) &&
+           same_bits(tiled.normals[i].second, mixed.normals[i].second) && same_bits(tiled.H[i], mixed.H[i]);
+  report("8a. per-point k and order: Parallel_tag and tile_size(500) == in core, sequential (bitwise)", same, "");
+
+  auto rejects = [&](std::vector<long long> values, const std::string& expected) {
+    std::vector<long long> v(N, 0);
+    for(std::size_t i = 0; i < N; ++i) v[i] = values[i % values.size()];
+    PV_range pts = kitten;
+    try { CGAL::wavejet_estimate_normals<Seq>(pts, 1, WJP::neighborhood_size_map(slot_map(pts, v)).point_map(pm).normal_map(nm)); }
+    catch(const std::invalid_argument& e) { return std::string(e.what()).find(expected) != std::string::npos; }
+    return false;
+  };
+  report("8a. neighborhood_size_map: a negative size, and 0 with k < 2, are errors",
+         rejects({20, -3}, "negative") && rejects({20, 0}, "fewer than 2") && !rejects({20, 5}, "neighborhood_size_map"), "");
+}
+
+// A plane z = 0 over [0,1]^2 (uniform random) with Gaussian height noise of standard deviation sigma.
+static PV_range noisy_plane(std::size_t N, double sigma, unsigned int seed)
+{
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0., 1.);
+  std::normal_distribution<double> g(0., 1.);
+  PV_range pts;
+  for(std::size_t i = 0; i < N; ++i)
+  {
+    const double x = u(rng), y = u(rng);
+    pts.emplace_back(Point(x, y, sigma * g(rng)), Vector(0, 0, 1));
+  }
+  return pts;
+}
+
+// 8b. wavejet_estimate_scales. Where the estimated error is known to be monotone, the choice is known:
+// on a noisy plane (no bias at any size, the variance falls with k) the largest size; on a clean
+// sphere (no noise, the order-2 fit's bias grows with the size) one of the two smallest (the noise
+// estimate at the smallest, from 5 degrees of freedom, makes its variance term comparable). The descriptor on the
+// unit sphere is |f_2| = 1/2 (height r^2/2) at every size. Sequential == Parallel; a NaN point is
+// not fitted and is no one's neighbor; bad ladders are errors.
+static void test_estimate_scales()
+{
+  Point_map pm;
+  typedef CGAL::Wavejets::Processing_report Report;
+  auto interior = [](const Point& p) { return p.x() > 0.2 && p.x() < 0.8 && p.y() > 0.2 && p.y() < 0.8; };
+  {
+    PV_range plane = noisy_plane(8000, 0.002, 3);
+    std::vector<unsigned int> k;
+    const Report r = CGAL::wavejet_estimate_scales<Seq>(plane, WJP::neighborhood_size_map(slot_map(plane, k)).point_map(pm));
+    const std::vector<unsigned int> ladder = CGAL::Wavejets::default_neighborhood_sizes(2);
+    std::size_t inside = 0, largest = 0;
+    for(std::size_t i = 0; i < plane.size(); ++i)
+      if(interior(plane[i].first)) { ++inside; largest += k[i] == ladder.back(); }
+    report("8b. noisy plane (sigma 0.002, 8000 points): the largest size inside", r.number_of_fitted_points == plane.size() &&
+           largest >= 0.9 * double(inside), std::to_string(largest) + " of " + std::to_string(inside) + " interior points at k " +
+           std::to_string(ladder.back()));
+  }
+  {
+    PV_range sphere = make_sphere(10000, 1.);
+    std::vector<unsigned int> k, k_parallel;
+    std::vector<std::vector<double> > descriptor;
+    const Report r = CGAL::wavejet_estimate_scales<Seq>(sphere, WJP::neighborhood_size_map(slot_map(sphere, k))
+                                                        .scale_descriptor_map(slot_map(sphere, descriptor)).point_map(pm));
+    CGAL::wavejet_estimate_scales<Par>(sphere, WJP::neighborhood_size_map(slot_map(sphere, k_parallel)).point_map(pm));
+    const std::vector<unsigned int> ladder = CGAL::Wavejets::default_neighborhood_sizes(2);
+    std::size_t smallest = 0; // at one of the two smallest sizes
+    double worst = 0.;
+    bool sized = true;
+    for(std::size_t i = 0; i < sphere.size(); ++i)
+    {
+      smallest += k[i] <= ladder[1];
+      sized = sized && descriptor[i].size() == ladder.size();
+      for(double d : descriptor[i]) worst = (std::max)(worst, std::abs(d - 0.5));
+    }
+    report("8b. clean unit sphere (10000 points): one of the two smallest sizes, descriptor 1/2 at every size",
+           r.number_of_fitted_points == sphere.size() && smallest >= 0.9 * double(sphere.size()) && sized && worst < 0.01,
+           std::to_string(smallest) + " of " + std::to_string(sphere.size()) + " at k <= " + std::to_string(ladder[1]) +
+             "; max |descriptor - 1/2| = " + fmt(worst));
+    report("8b. wavejet_estimate_scales: Sequential_tag == Parallel_tag", k == k_parallel, "");
+  }
+  {
+    PV_range pts = noisy_plane(2000, 0.001, 5);
+    pts[7].first = Point(std::nan(""), 0.5, 0.);
+    std::vector<unsigned int> k(pts.size(), 0);
+    std::vector<bool> fitted;
+    const std::vector<unsigned int> ladder = {10, 20, 40};
+    const Report r = CGAL::wavejet_estimate_scales<Seq>(pts, WJP::neighborhood_size_map(slot_map(pts, k))
+                                                          .neighborhood_sizes(ladder).fitted_map(slot_map(pts, fitted)).point_map(pm));
+    bool chosen_in_ladder = true;
+    for(std::size_t i = 0; i < pts.size(); ++i)
+      if(i != 7) chosen_in_ladder = chosen_in_ladder && std::find(ladder.begin(), ladder.end(), k[i]) != ladder.end();
+    report("8b. a NaN point is not fitted (map untouched), the others choose in the given ladder",
+           r.number_of_non_finite_points == 1 && r.number_of_fitted_points == pts.size() - 1 && !fitted[7] && k[7] == 0 &&
+           chosen_in_ladder, "");
+    auto rejects = [&](const std::vector<unsigned int>& bad, const std::string& expected) {
+      try { CGAL::wavejet_estimate_scales<Seq>(pts, WJP::neighborhood_size_map(slot_map(pts, k)).neighborhood_sizes(bad).point_map(pm)); }
+      catch(const std::invalid_argument& e) { return std::string(e.what()).find(expected) != std::string::npos; }
+      return false;
+    };
+    report("8b. an empty, decreasing or too small ladder is an error",
+           rejects({}, "empty") && rejects({20, 10}, "increase") && rejects({1, 10}, ">= 2"), "");
+    PV_range none;
+    std::vector<unsigned int> k_none;
+    const Report e = CGAL::wavejet_estimate_scales<Seq>(none, WJP::neighborhood_size_map(slot_map(none, k_none)).point_map(pm));
+    report("8b. empty range: nothing fitted, no error", e.number_of_points == 0 && e.number_of_fitted_points == 0, "");
+  }
+}
+
 /// 20000 random points of data/fandisk.off (normals (0, 0, 1)), made once.
 static const PV_range& fandisk()
 {
@@ -1052,5 +1224,7 @@ int main(int argc, char** argv)
     Case{"versus_jets.curvatures", [] { test_curvatures(kitten()); }},
     Case{"contract.concurrency_inputs_interruption_parameters", [] { test_contract(kitten()); }},
     Case{"contract.neighborhood_center_and_written_normals", test_neighborhood_center_and_written_normals},
+    Case{"scales.per_point_maps", [] { test_per_point_maps(kitten()); }},
+    Case{"scales.estimate_scales", test_estimate_scales},
   });
 }

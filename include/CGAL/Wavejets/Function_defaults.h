@@ -13,7 +13,9 @@
 #include <CGAL/Wavejets/Fitting_options.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
+#include <vector>
 
 namespace CGAL {
 namespace Wavejets {
@@ -89,6 +91,21 @@ inline std::size_t default_number_of_neighbors(std::size_t order)
 {
   const std::size_t coefficients = (order + 1) * (order + 2) / 2;
   return std::max<std::size_t>(40, 3 * coefficients / 2);
+}
+
+/// \ingroup PkgWavejetsRef
+/// The ladder of neighborhood sizes that `wavejet_estimate_scales()` (and the tool's `--k auto`) try
+/// when none is given: 7 numbers of neighbors from the smallest that fits order K with 1.5 points per
+/// coefficient (at least 10) to 16 times that, each 2^(2/3) = 1.59 times the previous (the nested fits
+/// then cost about 2.6 fits at the largest size).
+inline std::vector<unsigned int> default_neighborhood_sizes(std::size_t order)
+{
+  const std::size_t coefficients = (order + 1) * (order + 2) / 2;
+  const double smallest = double((std::max<std::size_t>)(10, (3 * coefficients + 1) / 2));
+  std::vector<unsigned int> ladder;
+  for(int j = 0; j < 7; ++j)
+    ladder.push_back((unsigned int)(std::lround(smallest * std::exp2(2. * j / 3.))));
+  return ladder;
 }
 
 /// \ingroup PkgWavejetsRef

@@ -45,6 +45,10 @@ namespace Wavejets {
   X(write_normals)               /* enhance_positions: also write the Wavejet normals           */ \
   X(move_along_input_normals)    /* enhance_positions: move along the input normals             */ \
   X(fitted_map)                  /* writable bool map: true where a Wavejet was fitted          */ \
+  X(neighborhood_size_map)       /* readable map: each point's number of neighbors (0: k)       */ \
+  X(order_map)                   /* readable map: each point's order K (0: order)               */ \
+  X(neighborhood_sizes)          /* estimate_scales: the ladder of numbers of neighbors         */ \
+  X(scale_descriptor_map)        /* estimate_scales: writable map of each point's descriptor    */ \
   X(tile_size)                   /* tiled run: at most this many points per tile (0: in core)   */ \
   X(tile_halo)                   /* tiled run: first halo width of each tile (0: estimated)     */ \
   X(tile)                        /* Wavejets::Tile: the range is one tile of a larger point set */ \

@@ -80,6 +80,13 @@ struct Driver_settings
   double tile_halo = 0.;                   // first halo of each tile, world units (0: estimated)
   bool is_tile = false;                    // the range is one tile of a larger point set: `tile`
   Tile tile;
+  std::vector<unsigned int> k_of_point;    // `neighborhood_size_map`, by index in the range (empty: k everywhere);
+                                           // then k is the largest of them (the tiles' halos)
+  std::vector<std::size_t> order_of_point; // `order_map`, idem (empty: order everywhere)
+
+  /// The number of neighbors and the order of the point of index `i` in the range.
+  unsigned int k_at(std::size_t i) const { return k_of_point.empty() ? k : k_of_point[i]; }
+  std::size_t order_at(std::size_t i) const { return order_of_point.empty() ? order : order_of_point[i]; }
 };
 
 /// The requested order K: `Wavejets::parameters::order`, or \cgal's `degree_fitting` (the name the jet
@@ -164,8 +171,9 @@ Driver_settings read_settings(PointRange& points, unsigned int k, const NP& np, 
   s.neighbor_radius = to_double(choose_parameter(get_parameter(np, CGAL::internal_np::neighbor_radius), 0.));
   s.order = read_order(np, d.order, fn);
   check_degree_monge(np, fn, computes_curvatures);
-  require(s.k >= 2 || s.neighbor_radius > 0, fn, "needs k >= 2 or neighbor_radius > 0");
   require(std::isfinite(s.neighbor_radius) && s.neighbor_radius >= 0, fn, "neighbor_radius must be finite and >= 0");
+  read_per_point_scales(points, np, s);
+  require(s.k >= 2 || s.neighbor_radius > 0, fn, "needs k >= 2 or neighbor_radius > 0");
   s.fitting = read_fitting_options(np, d.fitting, fn);
   s.fitting.neighborhood_radius = s.neighbor_radius;
   s.restrict_to_consistent_normals = choose_parameter(get_parameter(np, wnp::restrict_to_consistent_normals), false);
@@ -189,6 +197,44 @@ Driver_settings read_settings(PointRange& points, unsigned int k, const NP& np, 
                      s.restrict_to_consistent_normals || s.fitting.normal_use == Normal_use::SEED_FRAME;
   s.read_input_normals = has_normal_map(points, np) && (d.orients_with_input_normals || asked);
   return s;
+}
+
+/// The per-point neighborhood sizes and orders (`neighborhood_size_map`, `order_map`), read in range
+/// order into `s`. A value of 0 stands for the function's `k` (or order); the neighborhood sizes are
+/// numbers of neighbors (with `neighbor_radius`, the most kept within the radius).
+template <class PointRange, class NP>
+void read_per_point_scales(PointRange& points, const NP& np, Driver_settings& s)
+{
+  namespace wnp = Wavejets::internal_np;
+  using CGAL::parameters::is_default_parameter;
+  const char* fn = s.function;
+  if constexpr(!is_default_parameter<NP, wnp::neighborhood_size_map_t>::value)
+  {
+    const auto map = CGAL::parameters::get_parameter(np, wnp::neighborhood_size_map);
+    unsigned int largest = 0;
+    for(auto it = points.begin(); it != points.end(); ++it)
+    {
+      const long long k = static_cast<long long>(get(map, *it));
+      require(k >= 0 && k <= (std::numeric_limits<unsigned int>::max)(), fn,
+              "neighborhood_size_map: a number of neighbors is negative or too large");
+      const unsigned int k_i = k > 0 ? (unsigned int)(k) : s.k;
+      require(k_i >= 2 || s.neighbor_radius > 0, fn,
+              "neighborhood_size_map: a point has fewer than 2 neighbors (0 stands for k, which is < 2)");
+      s.k_of_point.push_back(k_i);
+      largest = (std::max)(largest, k_i);
+    }
+    s.k = (std::max)(s.k, largest);
+  }
+  if constexpr(!is_default_parameter<NP, wnp::order_map_t>::value)
+  {
+    const auto map = CGAL::parameters::get_parameter(np, wnp::order_map);
+    for(auto it = points.begin(); it != points.end(); ++it)
+    {
+      const long long order = static_cast<long long>(get(map, *it));
+      require(order >= 0, fn, "order_map: an order is negative");
+      s.order_of_point.push_back(order > 0 ? std::size_t(order) : s.order);
+    }
+  }
 }
 
 /// For the functions that read or write normals whatever their settings.
@@ -403,7 +449,9 @@ public:
       normal = input.normals[i];
       if(normal.allFinite() && normal.squaredNorm() > 0) hint = &normal; // else: unoriented
     }
-    query.neighbors(i, settings.k, settings.neighbor_radius, neighbors_, scratch_);
+    const std::size_t in_range = input.index_in_range(i);
+    k_ = settings.k_at(in_range);
+    query.neighbors(i, k_, settings.neighbor_radius, neighbors_, scratch_);
     const Eigen::Vector3d p = input.position(i);
     offsets_.assign(1, Eigen::Vector3d::Zero()); // the query point, first
     if(neighbor_normals) normals_of_offsets_.assign(1, (*neighbor_normals)[i]);
@@ -414,7 +462,7 @@ public:
       offsets_.push_back(input.position(j) - p);
       if(neighbor_normals) normals_of_offsets_.push_back((*neighbor_normals)[j]);
     }
-    fitter_.fit(offsets_.data(), offsets_.size(), settings.order, settings.fitting, hint, fit_,
+    fitter_.fit(offsets_.data(), offsets_.size(), settings.order_at(in_range), settings.fitting, hint, fit_,
                 neighbor_normals ? normals_of_offsets_.data() : nullptr);
     return fit_;
   }
@@ -433,7 +481,7 @@ public:
   {
     const Eigen::Vector3d p = input.position(i);
     double r = std::numeric_limits<double>::infinity();
-    if(settings.k > 0 && neighbors_.size() == settings.k) r = (input.position(neighbors_.back()) - p).norm();
+    if(k_ > 0 && neighbors_.size() == k_) r = (input.position(neighbors_.back()) - p).norm();
     else if(settings.neighbor_radius > 0) r = settings.neighbor_radius;
     if(first_reach)
     {
@@ -446,6 +494,7 @@ public:
 private:
   Fitter fitter_;
   Fit_result fit_;
+  unsigned int k_ = 0; // the k of the last fit
   std::vector<std::size_t> neighbors_;
   Neighbor_query::Scratch scratch_;
   std::vector<Eigen::Vector3d> offsets_, normals_of_offsets_;
@@ -527,7 +576,7 @@ Pass_result fit_pass(const Input& input, const Driver_settings& settings, const 
       }
       result.status[i] = (unsigned char)(fit.status);
       if(!fit.success()) continue;
-      result.reduced[i] = fit.order < settings.order;
+      result.reduced[i] = fit.order < settings.order_at(input.index_in_range(i));
       kernel(Fitted_point{input.index_in_range(i), i, fit, fitter.coefficients()});
       result.fitted[i] = 1;
     }
