@@ -1,6 +1,10 @@
 // See fit_command.h.
 #include "fit_command.h"
 
+#include <CGAL/wavejet_estimate_scales.h>
+
+#include <map>
+
 namespace wavejets_demo {
 
 namespace {
@@ -44,6 +48,50 @@ Output_columns add_output_columns(Point_set& points, unsigned command)
   if(command == CURVATURE)
     for(const std::string& name : curvature_column_names()) c.curvature.push_back(zero_column<double>(points, name));
   return c;
+}
+
+namespace {
+/// The descriptor of wavejet_estimate_scales() into one double column per size of the ladder.
+struct Descriptor_columns_map
+{
+  typedef Point_set::Index key_type;
+  typedef std::vector<double> value_type;
+  typedef std::vector<double> reference;
+  typedef boost::writable_property_map_tag category;
+  std::vector<Point_set::Property_map<double> > columns;
+  friend void put(const Descriptor_columns_map& m, key_type k, const std::vector<double>& v)
+  {
+    for(std::size_t j = 0; j < m.columns.size(); ++j) m.columns[j][k] = v[j];
+  }
+};
+} // namespace
+
+Automatic_scales estimate_scales(Point_set& points, std::size_t order, bool descriptor_columns, const Callback& cb)
+{
+  namespace WP = CGAL::Wavejets::parameters;
+  const std::vector<unsigned int> ladder = CGAL::Wavejets::default_neighborhood_sizes(order);
+  Automatic_scales a;
+  a.sizes.k = zero_column<int>(points, "scale_k");
+  Descriptor_columns_map descriptor; // no column: nothing written
+  if(descriptor_columns)
+    for(unsigned int k : ladder) descriptor.columns.push_back(zero_column<double>(points, "f2_k" + std::to_string(k)));
+  const CGAL::Wavejets::Processing_report r = CGAL::wavejet_estimate_scales<Concurrency_tag>(points,
+    WP::order(order).neighborhood_size_map(a.sizes.k).neighborhood_sizes(ladder).scale_descriptor_map(descriptor)
+      .callback(cb).point_map(points.point_map()));
+  // The share of the fitted points at each size (an unfitted point keeps scale_k 0, and each function
+  // then fits it at the largest size).
+  std::map<int, std::size_t> count;
+  for(Point_set::Index i : points) ++count[a.sizes.k[i]];
+  a.summary = "Scales chosen per point (order " + std::to_string(order) + "; " + std::to_string(r.number_of_unfitted_points) +
+              " without one, fitted at " + std::to_string(ladder.back()) + " neighbors):";
+  for(unsigned int k : ladder)
+  {
+    const double share = r.number_of_points ? 100. * double(count[int(k)]) / double(r.number_of_points) : 0.;
+    a.summary += " " + std::to_string(k) + ": " + std::to_string(int(std::lround(share))) + "%";
+    if(k != ladder.back()) a.summary += ",";
+  }
+  a.summary += ".";
+  return a;
 }
 
 std::string report_text(const CGAL::Wavejets::Processing_report& r)

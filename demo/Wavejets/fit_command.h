@@ -109,6 +109,27 @@ struct In_tile
   }
 };
 
+/// With --k auto: each point's number of neighbors, in the output column scale_k, passed to every
+/// function call (as a Tiling is).
+struct With_scales
+{
+  Point_set::Property_map<int> k;
+  template <class NP> auto operator()(const NP& np) const
+  {
+    return CGAL::Wavejets::parameters::neighborhood_size_map(k, np);   // after CGAL's parameters: prepended
+  }
+};
+/// What --k auto chose: the sizes (`tiling()`) and a sentence for the summary.
+struct Automatic_scales
+{
+  With_scales sizes;
+  std::string summary;
+  const With_scales& tiling() const { return sizes; }
+};
+/// --k auto: `wavejet_estimate_scales()` at `order` with the default ladder, into the column scale_k
+/// (and with `descriptor_columns`, the columns f2_k<N>: |f_2| at each size N of the ladder).
+Automatic_scales estimate_scales(Point_set& points, std::size_t order, bool descriptor_columns, const Callback& cb);
+
 namespace fit_detail {
 template <class Extra>
 auto fit_parameters(const Extra& extra, const Fit_settings& s, Point_set& points, const Callback& cb)

@@ -15,6 +15,7 @@
 #include <CGAL/wavejet_enhance_positions.h>
 #include <CGAL/wavejet_estimate_curvatures.h>
 #include <CGAL/wavejet_estimate_normals.h>
+#include <CGAL/wavejet_estimate_scales.h>
 
 #ifdef CGAL_LINKED_WITH_TBB
 #include <tbb/global_control.h>
@@ -106,7 +107,7 @@ const Command_info commands[] = {
 
 struct Flag_info { const char* name; const char* arg; unsigned commands; const char* help; };
 const Flag_info flags[] = {
-  {"--k", "N", FITS, "neighbors per fit (k nearest: Rf per point follows the sampling; default 40, 1.5 x the coefficients above order 6); with --radius: at most N nearest within the radius (0: no limit)"},
+  {"--k", "N", FITS, "neighbors per fit (k nearest: Rf per point follows the sampling; default 40, 1.5 x the coefficients above order 6); with --radius: at most N nearest within the radius (0: no limit); auto: each point's own, chosen among 7 sizes (10 to 160 at order 2; in memory only), written as the column scale_k (curvature: also f2_k<N>, |f_2| at each size)"},
   {"--radius", "R", FITS, "neighborhood radius in model units (points with too few neighbors inside are reported, not fitted)"},
   {"--radius-factor", "F", FITS, "instead of --k and --radius: one radius of F x the average spacing to the 6 nearest neighbors (e.g. 4)"},
   {"--order", "K", FITS, "Wavejet order (default 2 for normals and curvature, 4 for the enhance commands)"},
@@ -216,6 +217,7 @@ struct Options
   const Command_info* command = nullptr;
   std::vector<std::string> files;
   bool has_k = false;
+  bool auto_k = false;                     // --k auto: wavejet_estimate_scales() per point
   unsigned int k = 0;
   double radius = 0., radius_factor = 0.;  // radius_factor 0: not given
   std::size_t order = 0;                 // 0: the command's default
@@ -334,7 +336,8 @@ Options parse_command_line(const std::vector<std::string>& args)
     if(!f->arg[0] && inline_value) throw Usage_error(a + " takes no value");
 
     if(a == "--help") { print_command_help(std::cout, *o.command); std::exit(EXIT_SUCCESS); }
-    else if(a == "--k") { o.k = unsigned(parse_integer(a, value, 0, 100000)); o.has_k = true; }
+    else if(a == "--k" && value == "auto") { o.auto_k = true; o.has_k = false; }
+    else if(a == "--k") { o.k = unsigned(parse_integer(a, value, 0, 100000)); o.has_k = true; o.auto_k = false; }
     else if(a == "--radius") {
       o.radius = parse_number(a, value);
       if(o.radius <= 0) throw Usage_error("--radius must be > 0");
@@ -461,12 +464,23 @@ struct Neighborhood
 {
   unsigned int k = 0;
   double radius = 0.;
+  bool automatic = false;  // --k auto: k per point (k is then the largest size)
   std::string description;
 };
 
 Neighborhood choose_neighborhood(const Options& o, std::size_t order, const Point_set& points, const std::string& path)
 {
   Neighborhood n;
+  if(o.auto_k) {
+    if(o.radius > 0 || o.radius_factor > 0) throw Usage_error("--k auto chooses numbers of neighbors: not with --radius or --radius-factor");
+    const std::vector<unsigned int> ladder = CGAL::Wavejets::default_neighborhood_sizes(order);
+    n.k = ladder.back();
+    n.automatic = true;
+    std::string sizes;
+    for(unsigned int k : ladder) sizes += (sizes.empty() ? "" : ", ") + std::to_string(k);
+    n.description = "nearest neighbors, per point among " + sizes + " (--k auto)";
+    return n;
+  }
   if(o.radius > 0) {
     n.radius = o.radius;
     n.k = o.has_k ? o.k : 0;
@@ -522,12 +536,14 @@ const char* command_stage_label(unsigned bit)
 // Estimates the normals of a point set that has none (its normal map is zero): oriented toward
 // --orient-toward's viewpoint, else by a minimum spanning tree (mst_orient_normals reorders its
 // range, so it runs on a copy that remembers the indices). Writes `fitted` when it has a map.
+template <class Scales>
 void estimate_oriented_normals(Point_set& points, const wavejets_demo::Fit_settings& s, std::size_t order,
-                               const wavejets_demo::Uchar_bool_map& fitted, Progress& progress, Run_log& log)
+                               const wavejets_demo::Uchar_bool_map& fitted, Progress& progress, Run_log& log,
+                               const Scales& scales)
 {
   const Clock::time_point t0 = Clock::now();
   const CGAL::Wavejets::Processing_report r = wavejets_demo::estimate_normals_of_bare_points(points, s, order, fitted,
-    progress.stage("estimating normals"), wavejets_demo::In_core{});
+    progress.stage("estimating normals"), scales);
   progress.done();
   std::string orientation;
   if(s.viewpoint)
@@ -725,6 +741,7 @@ int run_streamed_command(const Options& o, Progress& progress)
                       std::string(o.max_memory > 0 ? "--max-memory" : "--tile-size"));
   const unsigned bit = o.command->bit;
   const std::size_t order = o.order ? o.order : CGAL::Wavejets::function_defaults(library_function(bit)).order;
+  if(o.auto_k) throw Usage_error("--k auto runs in memory: not with --max-memory, --tile-size or --job");
   const Neighborhood n = choose_neighborhood(o, order, Point_set(), in_path);
   const wavejets_demo::Fit_settings s = fit_settings(o, order, n, o.consistent_normals.value_or(false));
   wavejets_demo::Streaming_settings settings;
@@ -760,39 +777,51 @@ int run_fit_command_on_input(const Options& o, Progress& progress)
   // thin part (ears, fins, sheets) are left out by default; a point set's normals may be unoriented.
   const wavejets_demo::Fit_settings s = fit_settings(o, order, n, o.consistent_normals.value_or(in.is_mesh()));
   const wavejets_demo::Output_columns columns = wavejets_demo::add_output_columns(points, bit);
-  const wavejets_demo::In_core in_core;
-
+  // The fits, with each call's neighborhoods passed by `in_core` (In_core, or with --k auto the
+  // per-point sizes).
   std::string what;
-  if(bare)   // for normals, this is the command; the others need normals first (order 2)
-    estimate_oriented_normals(points, s, bit == NORMALS ? order : 2,
-                              bit == NORMALS ? wavejets_demo::Uchar_bool_map{columns.fitted} : wavejets_demo::Uchar_bool_map{},
-                              progress, log);
-  if(bit != NORMALS || !bare) {
-    const Clock::time_point t = Clock::now();
-    const CGAL::Wavejets::Processing_report r =
-      wavejets_demo::run_fit_command(points, s, columns, progress.stage(command_stage_label(bit)), in_core);
-    progress.done();
-    what = command_text(s, r);
-    if(bit == CURVATURE) {
-      const std::vector<Point_set::Property_map<double> >& c = columns.curvature;
-      what += ". Over the fitted points, 5% / median / 95%: H " + percentiles(points, c[0], columns.fitted) + ", K " +
-              percentiles(points, c[1], columns.fitted) + ", k1 " + percentiles(points, c[2], columns.fitted) + ", k2 " +
-              percentiles(points, c[3], columns.fitted);
-    } else if(bit == POSITIONS && in.is_mesh()) {
-      // The normals of the moved mesh: from its faces (vertices without a face keep their Wavejet normal).
-      std::size_t without_face = 0;
-      set_face_normals(points, in.faces, &without_face);
-      what += "; normals of the moved mesh from its faces (" + std::to_string(without_face) +
-              " vertices without a face keep their Wavejet normal)";
-    } else if(bit == POSITIONS) {
-      const CGAL::Wavejets::Processing_report rn = wavejets_demo::estimate_normals_of_result(points, s,
-        progress.stage("normals of the result"), in_core);
+  auto fit = [&](const auto& in_core) {
+    if(bare)   // for normals, this is the command; the others need normals first (order 2)
+      estimate_oriented_normals(points, s, bit == NORMALS ? order : 2,
+                                bit == NORMALS ? wavejets_demo::Uchar_bool_map{columns.fitted} : wavejets_demo::Uchar_bool_map{},
+                                progress, log, in_core);
+    if(bit != NORMALS || !bare) {
+      const Clock::time_point t = Clock::now();
+      const CGAL::Wavejets::Processing_report r =
+        wavejets_demo::run_fit_command(points, s, columns, progress.stage(command_stage_label(bit)), in_core);
       progress.done();
-      what += "; " + result_normals_text(rn);
+      what = command_text(s, r);
+      if(bit == CURVATURE) {
+        const std::vector<Point_set::Property_map<double> >& c = columns.curvature;
+        what += ". Over the fitted points, 5% / median / 95%: H " + percentiles(points, c[0], columns.fitted) + ", K " +
+                percentiles(points, c[1], columns.fitted) + ", k1 " + percentiles(points, c[2], columns.fitted) + ", k2 " +
+                percentiles(points, c[3], columns.fitted);
+      } else if(bit == POSITIONS && in.is_mesh()) {
+        // The normals of the moved mesh: from its faces (vertices without a face keep their Wavejet normal).
+        std::size_t without_face = 0;
+        set_face_normals(points, in.faces, &without_face);
+        what += "; normals of the moved mesh from its faces (" + std::to_string(without_face) +
+                " vertices without a face keep their Wavejet normal)";
+      } else if(bit == POSITIONS) {
+        const CGAL::Wavejets::Processing_report rn = wavejets_demo::estimate_normals_of_result(points, s,
+          progress.stage("normals of the result"), in_core);
+        progress.done();
+        what += "; " + result_normals_text(rn);
+      }
+      what += ".";
+      log.fit_seconds += seconds_since(t);
     }
-    what += ".";
+  };
+  if(n.automatic) {
+    const Clock::time_point t = Clock::now();
+    const wavejets_demo::Automatic_scales scales = wavejets_demo::estimate_scales(points, order, bit == CURVATURE,
+                                                                                  progress.stage("choosing scales"));
+    progress.done();
+    log.lines.push_back(scales.summary);
     log.fit_seconds += seconds_since(t);
-  }
+    fit(scales.tiling());
+  } else
+    fit(wavejets_demo::In_core{});
 
   const Clock::time_point tw = Clock::now();
   write_output(points, in.faces, out_path, o.ascii, output_comment(o));

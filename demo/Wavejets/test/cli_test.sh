@@ -393,6 +393,20 @@ cli_case_streamed_identical() {
   grep -q "the same bytes as in memory" summary.txt || fail "no streamed summary: $(cat summary.txt)"
 }
 
+cli_case_auto_scales() {
+  # --k auto: a size per point (column scale_k, one of the ladder's), every point fitted; curvature
+  # also writes |f_2| at each size; in memory only, and only with numbers of neighbors.
+  run normals "$kitten" auto.ply --k auto > auto.txt || fail "normals --k auto failed"
+  cat auto.txt
+  grep -q "Scales chosen per point" auto.txt || fail "no summary of the scales"
+  "$check" points "$kitten" auto.ply 0 fitted || fail "output check of auto.ply"
+  grep -aq "property int scale_k" auto.ply || fail "no scale_k column"
+  "$wj" curvature "$mesh" auto_c.ply --k auto -q || fail "curvature --k auto failed"
+  for c in scale_k f2_k10 f2_k160 mean_curvature; do grep -aq "property [a-z]* $c\$" auto_c.ply || fail "curvature: no $c column"; done
+  expect_error "--k auto" out.ply -- normals "$kitten" out.ply --k auto --tile-size 1000
+  expect_error "--k auto" out.ply -- normals "$kitten" out.ply --k auto --radius 0.1
+}
+
 cli_case_streamed_write_in_parts() {
   # 300,000 points in binary PLY: the output in two parts, written by two threads at their places
   # in the file, directly (the tool's own PLY: x y z nx ny nz fitted) or by CGAL's writer (float
