@@ -23,7 +23,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 TEMPLATE_DIR = os.path.join(HERE, "templates")
 CSV_DIR = os.path.join(HERE, "csv")  # --csv-dir DIR: read another run's CSV files
 OUT_DIR = HERE  # --out-dir DIR: write the reports and plots there
-REPORTS = ["results", "accuracy", "accuracy_ponca", "filters", "workflows", "python"]
+REPORTS = ["results", "accuracy", "accuracy_ponca", "filters", "workflows", "python", "scale_selection"]
 MAX_REPORT_BYTES = 40 * 1024
 
 
@@ -61,7 +61,7 @@ def bold_verdict(name, header, row):
 
 # Tables whose rendering marks something: name pattern -> function of (table name, header, row).
 ROW_STYLES = [(re.compile(r"^accuracy_ponca\.h_rmse_(?!grid)"), bold_best_relative_H),
-              (re.compile(r"^(results|accuracy_ponca)\.targets|^filters\.check$"), bold_verdict)]
+              (re.compile(r"^(results|accuracy_ponca|scale_selection)\.targets|^filters\.check$"), bold_verdict)]
 
 
 def markdown_table(name, align, selection=""):
@@ -315,7 +315,7 @@ def write_plots(reports):
     except ImportError:
         print("matplotlib not found (Debian: apt-get install python3-matplotlib): plots kept as they are")
         return
-    for report in reports:
+    for report in (r for r in reports if r in PLOTS):   # scale_selection has tables only
         fig = PLOTS[report](plt)
         fig.tight_layout()
         fig.savefig(os.path.join(OUT_DIR, report + ".png"), dpi=80)
