@@ -26,6 +26,7 @@
 #include "bench_common.h"
 #include "ponca_types.h"
 #include "wavejets_test_support.h"
+#include "wavejets_test_types.h"
 
 #include <algorithm>
 #include <chrono>
@@ -43,13 +44,7 @@
 
 namespace {
 
-typedef CGAL::Epick Kernel;
-typedef Kernel::Point_3 Point;
-typedef Kernel::Vector_3 Vector;
-typedef std::pair<Point, Vector> PV;
-typedef std::vector<PV> PV_range;
-typedef CGAL::First_of_pair_property_map<PV> Point_map;
-typedef CGAL::Second_of_pair_property_map<PV> Normal_map;
+using namespace wavejets_test::types;   // Kernel, Point, Vector, PV, PV_range, Point_map, Normal_map
 typedef CGAL::Parallel_if_available_tag Tag;
 namespace WJP = CGAL::Wavejets::parameters;
 

@@ -92,6 +92,7 @@ normals that are read always orient the frames.
   \cgalParamNEnd
   \wavejetsOrderParameter{2}
   \wavejetsDegreeFittingParameter{2}
+  \wavejetsPerPointScaleParameters
   \cgalParamNBegin{Wavejets::parameters::neighbors_per_coefficient}
     \cgalParamDescription{adaptive order: K is lowered until the neighborhood (query included) has at
                           least this many points per unknown, (K+1)(K+2)/2 unknowns (and the system has full rank)}
@@ -220,7 +221,8 @@ normals that are read always orient the frames.
 \cgalNamedParamsEnd
 
 \return a `Wavejets::Processing_report`: points that could not be fitted keep their normal and are counted.
-\throws std::invalid_argument if `k < 2` and no positive `neighbor_radius`, if `neighbor_radius` is negative or
+\throws std::invalid_argument if `k < 2` and no positive `neighbor_radius` (for a point whose
+        `neighborhood_size_map` value is 0), if a `neighborhood_size_map` or `order_map` value is negative, if `neighbor_radius` is negative or
         not finite, if `order < 1` (or `degree_fitting < 1`), if `order` and `degree_fitting` are both given and
         differ, if `degree_monge` is given (it has no meaning here), if `neighbors_per_coefficient < 1`, or if a
         `Point_set_3` has no normal map.
