@@ -85,7 +85,7 @@ struct Options
   bool quick = false, csv_dir_given = false;
   bool pipeline = false, pipeline_only = false; // --noisy-pipeline, --noisy-pipeline-only
   std::size_t points = 20000, eval = 300;
-  std::string csv_dir = std::string(__FILE__).substr(0, std::string(__FILE__).find_last_of('/')) + "/csv";
+  std::string csv_dir = wavejets_bench::source_dir() + "/csv";
   bool write() const { return !quick || csv_dir_given; } // --quick writes nothing unless --csv-dir
 };
 

@@ -18,6 +18,12 @@
 
 namespace wavejets_bench {
 
+/// This folder (benchmark/Wavejets of the source tree), where the benchmarks read their data and write
+/// their csv/ tables: an absolute path set by CMake in source_dir.cpp (the only file that sees it, so
+/// that the benchmarks' compilations stay the same in every clone for ccache; `__FILE__` is no help:
+/// ccache's base directory makes it relative to the build folder).
+std::string source_dir();
+
 /// One table of a benchmark's results, written as CSV (first row: the column names). The benchmarks write
 /// their tables as csv/<report>.<table>.csv; make_reports.py writes the Markdown reports and plots from them.
 class Csv_table

@@ -360,7 +360,7 @@ static std::vector<Pipeline_row> figure12_pipeline(double lambda, double noise_s
 
 struct Options
 {
-  std::string out_dir = std::string(__FILE__).substr(0, std::string(__FILE__).find_last_of('/')) + "/csv";
+  std::string out_dir = wavejets_bench::source_dir() + "/csv";
   bool quick = false, out_given = false;
   bool write() const { return !quick || out_given; } // --quick writes nothing unless --csv-dir
 };

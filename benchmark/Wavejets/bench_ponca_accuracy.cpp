@@ -85,7 +85,7 @@ static const bool have_ponca = false;
 struct Options
 {
   std::size_t points = 20000, eval = 1000;
-  std::string csv_dir = std::string(__FILE__).substr(0, std::string(__FILE__).find_last_of('/')) + "/csv";
+  std::string csv_dir = wavejets_bench::source_dir() + "/csv";
   bool quick = false;
 };
 

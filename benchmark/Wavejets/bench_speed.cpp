@@ -74,13 +74,6 @@ namespace WP = CGAL::Wavejets::parameters;
 // ---------------------------------------------------------------------------------------------
 // Utilities
 
-static std::string source_dir()
-{
-  std::string f = __FILE__;
-  const std::size_t s = f.find_last_of('/');
-  return s == std::string::npos ? std::string(".") : f.substr(0, s);
-}
-
 static double peak_rss_mb()
 {
   rusage u;
@@ -455,8 +448,8 @@ struct Options
   std::size_t n = 100000;
   std::size_t cgal_subset = 20000; // CGAL degree 6 / k 96 runs on this many points (0: all)
   std::string mode = "speed";      // speed | scaling | all | single
-  std::string mesh = source_dir() + "/data/bunny00.off";
-  std::string csv_dir = source_dir() + "/csv"; // where results.*.csv go (make_reports.py reads them there)
+  std::string mesh = wavejets_bench::source_dir() + "/data/bunny00.off";
+  std::string csv_dir = wavejets_bench::source_dir() + "/csv"; // where results.*.csv go (make_reports.py reads them there)
   std::size_t scaling_max_n = 2000000;
   bool no_write = false;
   int seed = 42;

@@ -147,7 +147,7 @@ static void wavejet_normals(Point_set& points, unsigned int k, std::size_t robus
 
 struct Options
 {
-  std::string here = std::string(__FILE__).substr(0, std::string(__FILE__).find_last_of('/') + 1); // ends in '/'
+  std::string here = wavejets_bench::source_dir() + "/"; // ends in '/'
   std::size_t n = 30000, samples = 30000;
   unsigned int k = 24;
   std::vector<std::string> meshes;
