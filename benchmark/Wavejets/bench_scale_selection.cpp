@@ -7,7 +7,8 @@
 // uniform with noise 0.1% ("features"). Regions: 4 bands of x times the 5 bands of y. Exact normals
 // and mean curvature from the height field (central differences of the analytic function).
 // Estimators, order 2: Wavejets at each k of the ladder (the best single k; the per-region oracle,
-// each region's best k chosen with the truth); automatic (wavejet_estimate_scales, then the functions
+// each region's best k chosen with the truth; the per-point oracle, each point's smallest error over
+// the ladder, a bound for any choice from the ladder); automatic (wavejet_estimate_scales, then the functions
 // with neighborhood_size_map); CGAL's estimate_local_k_neighbor_scales feeding degree-2 jets
 // (Monge_via_jet_fitting on each point's k nearest, CGAL's jet_estimate_normals there); PCA normals at
 // their best single k; Ponca's APSS at its best single k (if built with Ponca).
@@ -129,7 +130,29 @@ struct Errors
   std::size_t missing = 0;                     // evaluated points without an estimate
 };
 
-Errors errors(const Surface_data& d, const Estimate& e)
+/// Each point's errors: angle to the exact normal (degrees, unoriented) and |H error|; ok: estimated.
+struct Point_errors
+{
+  std::vector<double> angle, H;
+  std::vector<unsigned char> ok;
+};
+
+Point_errors point_errors(const Surface_data& d, const Estimate& e)
+{
+  Point_errors r;
+  for(std::size_t i = 0; i < d.points.size(); ++i)
+  {
+    const Vector& a = e.n[i];
+    const Vector& b = d.normal[i];
+    r.ok.push_back(e.ok[i]);
+    r.angle.push_back(e.ok[i] ? std::atan2(std::sqrt(CGAL::cross_product(a, b).squared_length()), std::abs(a * b)) * 180. / PI : 0.);
+    r.H.push_back(e.ok[i] && e.has_H ? std::abs(e.H[i] - d.H[i]) : 0.);
+  }
+  return r;
+}
+
+/// The means of each region, then over the regions.
+Errors aggregate(const Surface_data& d, const Point_errors& p)
 {
   Errors r;
   double count[REGIONS] = {};
@@ -137,11 +160,9 @@ Errors errors(const Surface_data& d, const Estimate& e)
   {
     const int g = d.region[i];
     if(g < 0) continue;
-    if(!e.ok[i]) { ++r.missing; continue; }
-    const Vector& a = e.n[i];
-    const Vector& b = d.normal[i];
-    r.angle[g] += std::atan2(std::sqrt(CGAL::cross_product(a, b).squared_length()), std::abs(a * b)) * 180. / PI;
-    if(e.has_H) r.H[g] += std::abs(e.H[i] - d.H[i]);
+    if(!p.ok[i]) { ++r.missing; continue; }
+    r.angle[g] += p.angle[i];
+    r.H[g] += p.H[i];
     ++count[g];
   }
   for(int g = 0; g < REGIONS; ++g)
@@ -151,6 +172,24 @@ Errors errors(const Surface_data& d, const Estimate& e)
     r.overall_angle += r.angle[g] / REGIONS;
     r.overall_H += r.H[g] / REGIONS;
   }
+  return r;
+}
+
+Errors errors(const Surface_data& d, const Estimate& e) { return aggregate(d, point_errors(d, e)); }
+
+/// The per-point oracle: each point's smallest error over the ladder (normals and H separately), a
+/// bound that no choice of k from the ladder can beat.
+Point_errors per_point_oracle(const std::vector<Point_errors>& single)
+{
+  Point_errors r = single.front();
+  for(std::size_t j = 1; j < single.size(); ++j)
+    for(std::size_t i = 0; i < r.ok.size(); ++i)
+    {
+      if(!single[j].ok[i]) continue;
+      if(!r.ok[i]) { r.ok[i] = 1; r.angle[i] = single[j].angle[i]; r.H[i] = single[j].H[i]; continue; }
+      r.angle[i] = std::min(r.angle[i], single[j].angle[i]);
+      r.H[i] = std::min(r.H[i], single[j].H[i]);
+    }
   return r;
 }
 
@@ -323,11 +362,13 @@ Surface_result run_surface(const Surface_data& d, const std::vector<unsigned int
   Surface_result out;
   const std::size_t J = ladder.size();
   std::vector<Errors> single(J), single_pca(J), single_apss;
+  std::vector<Point_errors> single_points(J);
   double single_seconds_at_largest = 0.;
   for(std::size_t j = 0; j < J; ++j)
   {
     const Estimate e = wavejets(d, ladder[j], One_k());
-    single[j] = errors(d, e);
+    single_points[j] = point_errors(d, e);
+    single[j] = aggregate(d, single_points[j]);
     if(j + 1 == J) single_seconds_at_largest = e.seconds;
     single_pca[j] = errors(d, pca(d, ladder[j]));
   }
@@ -359,6 +400,8 @@ Surface_result run_surface(const Surface_data& d, const std::vector<unsigned int
     oracle_k_angle[g] = int(ladder[ba]);
     oracle_k_H[g] = int(ladder[bh]);
   }
+  const Errors point_oracle = aggregate(d, per_point_oracle(single_points));
+  single_points.clear();
   // Automatic: the scales, then the functions with them.
   std::vector<unsigned int> k_auto(d.points.size(), 0);
   PV_range pts = d.points;
@@ -401,6 +444,7 @@ Surface_result run_surface(const Surface_data& d, const std::vector<unsigned int
   row("Wavejets, automatic", "per point, mean " + fixed(mean_k, 0), autom, true,
       fixed(auto_seconds / single_seconds_at_largest, 2) + "x");
   row("Wavejets, per-region oracle", "per region (truth)", oracle, true, "-");
+  row("Wavejets, per-point oracle (a bound)", "per point (truth)", point_oracle, true, "-");
   row("Wavejets, best single k (normals)", std::to_string(ladder[bs_a]), single[bs_a], true, "1.00x at k " + std::to_string(ladder.back()));
   if(bs_h != bs_a) row("Wavejets, best single k (H)", std::to_string(ladder[bs_h]), single[bs_h], true, "-");
   row("CGAL local scales + jets", "per point, mean " + fixed(mean_k_cgal, 0), cgal_errors, true,
@@ -448,7 +492,7 @@ Surface_result run_surface(const Surface_data& d, const std::vector<unsigned int
 int main(int argc, char** argv)
 {
   std::size_t N = 100000;
-  std::string csv_dir = std::string(__FILE__).substr(0, std::string(__FILE__).find_last_of('/')) + "/csv";
+  std::string csv_dir = wavejets_bench::source_dir() + "/csv";
   bool write = true;
   for(int a = 1; a < argc; ++a)
   {
