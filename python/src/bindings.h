@@ -28,6 +28,7 @@
 #include <algorithm>
 #include <complex>
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <string>
@@ -83,6 +84,37 @@ struct Output_map
 };
 typedef Output_map<double> Scalar_map;
 typedef Output_map<bool> Flag_map;
+typedef Output_map<unsigned int, std::int64_t> Count_output_map;   // wavejet_estimate_scales' sizes
+
+/// One unsigned value per point read from a buffer of N (a per-point k or order), or 0 for every
+/// point when the buffer is null (0 stands for the function's k or order: no per-point value).
+struct Count_map
+{
+  typedef std::size_t key_type;
+  typedef unsigned int value_type;
+  typedef unsigned int reference;
+  typedef boost::readable_property_map_tag category;
+  const std::uint32_t* in;
+  friend unsigned int get(const Count_map& m, std::size_t i) { return m.in ? m.in[i] : 0u; }
+};
+
+/// Rows of a buffer of N x `columns` doubles, written from a `std::vector<double>` of that size (the
+/// per-point values of a ladder of sizes).
+struct Row_map
+{
+  typedef std::size_t key_type;
+  typedef std::vector<double> value_type;
+  typedef const std::vector<double>& reference;
+  typedef boost::writable_property_map_tag category;
+  double* out;
+  std::size_t columns;
+  friend void put(const Row_map& m, std::size_t i, const std::vector<double>& row)
+  {
+    std::copy(row.begin(), row.begin() + std::ptrdiff_t((std::min)(row.size(), m.columns)), m.out + i * m.columns);
+  }
+};
+/// A per-point count array passed from Python: None, or a C-contiguous uint32 array of N values.
+typedef py::array_t<std::uint32_t, py::array::c_style> Count_array;
 
 /// The settings of one call, read from the keyword arguments the Python layer passes (every key is
 /// optional: a missing one takes the C++ default, of `Fitting_options` or of the function).
@@ -90,6 +122,9 @@ struct Call
 {
   std::size_t number_of_points = 0;
   unsigned int k = 0;
+  std::optional<Count_array> k_per_point;        // each point's k (0: k), or none
+  std::optional<Count_array> order_per_point;    // each point's order (0: order), or none
+  std::vector<unsigned int> neighborhood_sizes;  // estimate_scales' ladder (empty: the default)
   double neighbor_radius = 0.;
   std::size_t order = 0;
   CGAL::Wavejets::Fitting_options fitting;
@@ -104,6 +139,9 @@ struct Call
   bool move_along_input_normals = false;
   int threads = 0;                              // 0: all cores
   py::object progress;                          // None, or called with the fraction done
+
+  Count_map k_map() const { return Count_map{k_per_point ? k_per_point->data() : nullptr}; }
+  Count_map order_map() const { return Count_map{order_per_point ? order_per_point->data() : nullptr}; }
 };
 
 /// Reads the settings of a call of `function` (its defaults: `function_defaults()`).

@@ -12,6 +12,8 @@
 // they show come from here (`defaults()`), that is from the C++ headers.
 #include "bindings.h"
 
+#include <pybind11/stl.h>
+
 #include <CGAL/Wavejets/Function_defaults.h>
 #include <CGAL/Wavejets/version.h>
 
@@ -65,6 +67,8 @@ PYBIND11_MODULE(_wavejets, m)
   m.attr("__version__") = CGAL_WAVEJETS_VERSION_STR;
   m.def("defaults", &wp::defaults, py::arg("function"),
         "The defaults of a point-set function's keyword arguments, from the C++ headers.");
+  m.def("default_neighborhood_sizes", [](std::size_t order) { return CGAL::Wavejets::default_neighborhood_sizes(order); },
+        "The default ladder of wavejets.estimate_scales at this order.", py::arg("order"));
   m.def("default_k", [](std::size_t order) { return CGAL::Wavejets::default_number_of_neighbors(order); },
         py::arg("order"), "The number of neighbors used when k is not given, for a Wavejet order.");
   m.def("default_threads", [] {

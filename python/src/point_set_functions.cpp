@@ -7,7 +7,7 @@
 //
 // Author(s) : The CGAL Wavejets developers
 
-// The four point-set functions on NumPy arrays: each calls the C++ function of the same name with
+// The four point-set functions and wavejet_estimate_scales on NumPy arrays: each calls the C++ function of the same name with
 // Parallel_tag over the indices 0..N-1, the input arrays read in place through property maps, the
 // results written into new arrays. The Python layer (wavejets/_functions.py) checks and documents
 // the arguments; the C++ functions check them again (std::invalid_argument -> ValueError).
@@ -17,6 +17,9 @@
 #include <CGAL/wavejet_enhance_positions.h>
 #include <CGAL/wavejet_estimate_curvatures.h>
 #include <CGAL/wavejet_estimate_normals.h>
+#include <CGAL/wavejet_estimate_scales.h>
+
+#include <pybind11/stl.h>
 
 
 namespace wavejets_python {
@@ -27,10 +30,9 @@ namespace WP = CGAL::Wavejets::parameters;
 typedef CGAL::Wavejets::Processing_report Report;
 typedef std::function<bool(double)> Callback;
 
-/// The named parameters every function takes, after the function's own (`extra`, a pack of the
-/// package's parameters, which must come before CGAL's).
+/// The fit settings, after `extra` (a pack of the package's parameters).
 template <class Extra>
-auto shared_parameters(const Call& c, const Extra& extra, const Callback& callback, const Point_map& points)
+auto fitting_parameters(const Call& c, const Extra& extra)
 {
   const CGAL::Wavejets::Fitting_options& f = c.fitting;
   return extra.neighbors_per_coefficient(f.neighbors_per_coefficient)
@@ -38,11 +40,22 @@ auto shared_parameters(const Call& c, const Extra& extra, const Callback& callba
               .correction_iterations(f.correction_iterations)
               .tangent_plane_order(f.tangent_plane_order)
               .robust_iterations(f.robust_iterations)
+              .compact_weights(f.compact_weights);
+}
+
+/// The named parameters every function takes, after the function's own (`extra`, a pack of the
+/// package's parameters, which must come before CGAL's). The per-point k and order maps are always
+/// given: without per-point values they read 0 (the function's k and order) for every point, which
+/// gives the bits of a call without them.
+template <class Extra>
+auto shared_parameters(const Call& c, const Extra& extra, const Callback& callback, const Point_map& points)
+{
+  const CGAL::Wavejets::Fitting_options& f = c.fitting;
+  return fitting_parameters(c, extra.neighborhood_size_map(c.k_map()).order_map(c.order_map()))
               .seed_with_input_normals(c.seed_with_input_normals)
               .restrict_to_consistent_normals(c.restrict_to_consistent_normals)
               .use_neighbor_normals(c.use_neighbor_normals)
               .neighbor_normal_weight(f.neighbor_normal_weight)
-              .compact_weights(f.compact_weights)
               .neighbor_radius(c.neighbor_radius)
               .callback(callback)
               .point_map(points);
@@ -179,6 +192,28 @@ py::tuple enhance_normals(const Coordinates& points, const py::object& normals, 
   return py::make_tuple(out, make_report(r, a.fitted));
 }
 
+py::tuple estimate_scales(const Coordinates& points, const py::dict& kwargs)
+{
+  Arrays a(points, py::none());
+  const Call c = read_call(kwargs, CGAL::Wavejets::Point_set_function::ESTIMATE_NORMALS, a.n);
+  const std::vector<unsigned int> ladder =
+    c.neighborhood_sizes.empty() ? CGAL::Wavejets::default_neighborhood_sizes(c.order) : c.neighborhood_sizes;
+  const py::ssize_t n = py::ssize_t(a.n), J = py::ssize_t(ladder.size());
+  py::array_t<std::int64_t> k = zeros<std::int64_t>({n});
+  py::array_t<double> descriptor = zeros<double>({n, J});
+  const Report r = run_interruptibly(c, [&](const Callback& cb) {
+    return CGAL::wavejet_estimate_scales<CGAL::Parallel_tag>(a.range,
+      fitting_parameters(c, WP::order(c.order).neighborhood_sizes(ladder)
+                              .neighborhood_size_map(Count_output_map{k.mutable_data()})
+                              .scale_descriptor_map(Row_map{descriptor.mutable_data(), std::size_t(J)})
+                              .fitted_map(a.fitted_map()))
+        .callback(cb).point_map(a.point_map()));
+  });
+  py::array_t<std::int64_t> sizes({J});
+  std::copy(ladder.begin(), ladder.end(), sizes.mutable_data());
+  return py::make_tuple(k, sizes, descriptor, make_report(r, a.fitted));
+}
+
 } // namespace
 
 void bind_point_set_functions(py::module_& m)
@@ -188,6 +223,7 @@ void bind_point_set_functions(py::module_& m)
   m.def("estimate_curvatures", &estimate_curvatures, note, py::arg("points"), py::arg("normals"), py::arg("kwargs"));
   m.def("enhance_positions", &enhance_positions, note, py::arg("points"), py::arg("normals"), py::arg("kwargs"));
   m.def("enhance_normals", &enhance_normals, note, py::arg("points"), py::arg("normals"), py::arg("kwargs"));
+  m.def("estimate_scales", &estimate_scales, note, py::arg("points"), py::arg("kwargs"));
 }
 
 } // namespace wavejets_python

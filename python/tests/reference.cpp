@@ -13,7 +13,8 @@
 //
 //   wavejets_python_reference FUNCTION IN OUT K ORDER [GAIN_RE GAIN_IM]
 //
-// FUNCTION: estimate_normals | estimate_curvatures | enhance_positions | enhance_normals.
+// FUNCTION: estimate_normals | estimate_curvatures | enhance_positions | enhance_normals |
+// estimate_scales (K unused: the default ladder of ORDER; OUT: the chosen sizes, then the descriptor).
 // IN: read by the `wavejets` tool's reader (a point set without normals gets none, except for the
 // functions that need a normal map: zero normals then, as the Python module passes).
 // OUT: the result arrays, in the order of the Python function's outputs, as little-endian doubles
@@ -24,6 +25,7 @@
 #include <CGAL/wavejet_enhance_positions.h>
 #include <CGAL/wavejet_estimate_curvatures.h>
 #include <CGAL/wavejet_estimate_normals.h>
+#include <CGAL/wavejet_estimate_scales.h>
 
 #include <chrono>
 #include <complex>
@@ -130,6 +132,24 @@ int main(int argc, char** argv)
       WP::order(order).fitted_map(Fitted_map()).point_map(ps.point_map()).normal_map(ps.normal_map()));
     call_done();
     write_vectors(os, ps, ps.normal_map());
+  } else if(function == "estimate_scales") {
+    Point_set::Property_map<unsigned int> sizes = ps.add_property_map<unsigned int>("scale_k", 0u).first;
+    Point_set::Property_map<std::vector<double> > descriptor =
+      ps.add_property_map<std::vector<double> >("descriptor", std::vector<double>()).first;
+    call_started();
+    CGAL::wavejet_estimate_scales<CGAL::Parallel_tag>(ps, WP::order(order).neighborhood_size_map(sizes)
+      .scale_descriptor_map(descriptor).fitted_map(Fitted_map()).point_map(ps.point_map()));
+    call_done();
+    for(Point_set::Index i : ps) {
+      const double size = sizes[i];
+      os.write(reinterpret_cast<const char*>(&size), sizeof size);
+    }
+    const std::size_t J = CGAL::Wavejets::default_neighborhood_sizes(order).size();
+    for(Point_set::Index i : ps)
+      for(std::size_t j = 0; j < J; ++j) {
+        const double value = j < descriptor[i].size() ? descriptor[i][j] : 0.;
+        os.write(reinterpret_cast<const char*>(&value), sizeof value);
+      }
   } else {
     std::cerr << "unknown function " << function << "\n";
     return 2;

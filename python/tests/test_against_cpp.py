@@ -71,3 +71,13 @@ def test_enhance_normals_complex_gain(data, tmp_path):
     result = wavejets.enhance_normals(points, normals, k=40, gain=1 + 2j, order=4)
     cpp, fitted = cpp_results("enhance_normals", path, tmp_path / "out", len(points), 40, 4, 1 + 2j)
     assert_bitwise([result], cpp)
+
+
+def test_estimate_scales(data, tmp_path):
+    path, points, _ = data
+    scales, report = wavejets.estimate_scales(points, order=2, return_report=True)
+    cpp, fitted = cpp_results("estimate_scales", path, tmp_path / "out", len(points), 0, 2)
+    assert_bitwise([scales.k, scales.descriptor], cpp)
+    assert np.array_equal(scales.fitted, fitted)
+    assert report.number_of_fitted_points == np.count_nonzero(fitted) == len(points)
+    assert set(np.unique(scales.k)) <= set(scales.neighborhood_sizes.tolist())

@@ -10,6 +10,7 @@ details, on NumPy arrays of shape (N, 3)::
     normals = wavejets.estimate_normals(points, normals)          # oriented like the input
     c = wavejets.estimate_curvatures(points, normals)             # c.mean_curvature, c.k1, ...
     moved = wavejets.enhance_positions(points, normals, gain=2)   # details doubled
+    c = wavejets.estimate_curvatures(points, normals, k="auto")   # each point's k chosen
     wavejets.write("bunny_enhanced.ply", moved, normals, faces)
 
 Every function is the C++ function of the same name of the CGAL package, called with
@@ -19,10 +20,10 @@ lists its keyword arguments and their defaults (the C++ defaults).
 
 from ._wavejets import __version__
 from ._report import Report
-from ._functions import (Curvatures, enhance_normals, enhance_positions, estimate_curvatures,
-                         estimate_normals, fit)
+from ._functions import (Curvatures, Scales, enhance_normals, enhance_positions, estimate_curvatures,
+                         estimate_normals, estimate_scales, fit)
 from ._wavejets import Wavejet
 from ._io import read, render, write
 
-__all__ = ["estimate_normals", "estimate_curvatures", "enhance_positions", "enhance_normals", "fit",
-           "read", "write", "render", "Curvatures", "Report", "Wavejet", "__version__"]
+__all__ = ["estimate_normals", "estimate_curvatures", "enhance_positions", "enhance_normals", "estimate_scales",
+           "fit", "read", "write", "render", "Curvatures", "Report", "Scales", "Wavejet", "__version__"]

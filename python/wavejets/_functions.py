@@ -32,12 +32,15 @@ _DOC = {
     "normals": "normals : array_like, shape (N, 3), optional\n"
                "    Input normals (need not be unit). When given they orient the frames, so the\n"
                "    results have the normals' side (curvature signs, heights, normal directions).",
-    "k": "k : int, optional\n"
+    "k": "k : int, array_like of N ints, or 'auto', optional\n"
          "    Number of nearest neighbors of each fit (the point excluded); default 40, or 1.5 x the\n"
          "    (K+1)(K+2)/2 coefficients of order K when that is more. With neighbor_radius: the\n"
-         "    maximum number of neighbors kept in the radius (0: no limit).",
-    "order": "order : int\n"
-             "    The Wavejet order K (>= 1), lowered per point where the neighbors cannot support it.",
+         "    maximum number of neighbors kept in the radius (0: no limit). An array gives each\n"
+         "    point its own k (0: the default k); 'auto' chooses each point's k with\n"
+         "    estimate_scales(points, order=order) first.",
+    "order": "order : int, or array_like of N ints\n"
+             "    The Wavejet order K (>= 1), lowered per point where the neighbors cannot support it.\n"
+             "    An array gives each point its own order (0: the function's default order).",
     "neighbor_radius": "neighbor_radius : float\n"
                        "    A fixed neighborhood radius Rf (model units) instead of the k nearest neighbors;\n"
                        "    0 uses k nearest neighbors, Rf being the distance to the farthest.",
@@ -176,28 +179,75 @@ class _ProgressBar:
         sys.stderr.flush()
 
 
+def _per_point_counts(value, name, n):
+    """A per-point k or order: an (N,) uint32 C-contiguous array of integers >= 0."""
+    array = np.asarray(value)
+    if array.dtype.kind not in "biu" or array.dtype.kind == "b":
+        raise TypeError(f"{name}: expected integers, got dtype {array.dtype}")
+    if array.shape != (n,):
+        raise ValueError(f"{name}: expected one value per point, shape ({n},), got shape {array.shape}")
+    if n > 0 and (array.min() < 0 or array.max() > np.iinfo(np.uint32).max):
+        raise ValueError(f"{name}: every value must be >= 0 (0: the default) and fit in 32 bits")
+    return np.ascontiguousarray(array, dtype=np.uint32)
+
+
+def _is_scalar_integer(value):
+    return isinstance(value, numbers.Integral) and not isinstance(value, bool)
+
+
+def _progress(progress, label):
+    if progress is True:
+        return _ProgressBar(label)
+    if progress is False or progress is None:
+        return None
+    if not callable(progress):
+        raise TypeError("progress: expected True, False or a callable taking the fraction done")
+    return progress
+
+
+def _check_count(k, n, name):
+    if k < 2:
+        raise ValueError(f"{name}: must be >= 2 (or give a neighbor_radius), got {k}")
+    if n > 0 and k > n - 1:
+        raise ValueError(f"{name}: {k} neighbors asked, but the {n} points give each point at most {n - 1}")
+
+
 def _settings(function, points, normals, k, order, neighbor_radius, threads, progress, options):
-    """The keyword arguments of the compiled call, checked."""
+    """The keyword arguments of the compiled call, checked. k='auto' is kept as is (see _auto_k)."""
     n = points.shape[0]
-    order = _integer(order, "order", 1)
+    settings = {}
+    if _is_scalar_integer(order) or order is None or isinstance(order, (bool, float, str)):
+        order = _integer(order, "order", 1)
+    else:
+        settings["order_per_point"] = _per_point_counts(order, "order", n)
+        order = _default(function, "order")
     neighbor_radius = _real(neighbor_radius, "neighbor_radius", 0.0)
+    if isinstance(k, str):
+        if k != "auto":
+            raise ValueError(f"k: expected an integer, an array of integers or 'auto', got {k!r}")
+        if neighbor_radius > 0:
+            raise ValueError("k: 'auto' chooses numbers of neighbors; it excludes neighbor_radius")
+        if "order_per_point" in settings:
+            raise ValueError("k: 'auto' chooses the neighbors for one order; give order as one integer")
+        settings["k_auto"] = True
+        k = None
     if k is None:
         k = _wavejets.default_k(order)
-    k = _integer(k, "k", 0)
-    if neighbor_radius == 0.0:
-        if k < 2:
-            raise ValueError(f"k: must be >= 2 (or give a neighbor_radius), got {k}")
-        if n > 0 and k > n - 1:
-            raise ValueError(f"k: {k} neighbors asked, but the {n} points give each point at most {n - 1}")
+    if _is_scalar_integer(k) or isinstance(k, (bool, float)):
+        k = _integer(k, "k", 0)
+        if neighbor_radius == 0.0:
+            _check_count(k, n, "k")
+    else:
+        counts = _per_point_counts(k, "k", n)
+        settings["k_per_point"] = counts
+        k = _wavejets.default_k(order)
+        if neighbor_radius == 0.0 and n > 0:
+            _check_count(int(np.where(counts > 0, counts, k).min()), n, "k")
+            _check_count(int(np.where(counts > 0, counts, k).max()), n, "k")
     if threads is not None:
         threads = _integer(threads, "threads", 1)
-    if progress is True:
-        progress = _ProgressBar(f"wavejets.{function}")
-    elif progress is False or progress is None:
-        progress = None
-    elif not callable(progress):
-        raise TypeError("progress: expected True, False or a callable taking the fraction done")
-    settings = dict(k=k, order=order, neighbor_radius=neighbor_radius, threads=threads, progress=progress)
+    progress = _progress(progress, f"wavejets.{function}")
+    settings.update(k=k, order=order, neighbor_radius=neighbor_radius, threads=threads, progress=progress)
     for name, value in options.items():
         if name in ("seed_with_input_normals", "restrict_to_consistent_normals", "use_neighbor_normals",
                     "compact_weights", "write_normals", "move_along_input_normals"):
@@ -216,6 +266,15 @@ def _settings(function, points, normals, k, order, neighbor_radius, threads, pro
         elif name == "evaluation_radius":
             value = _real(value, name, 0.0)
         settings[name] = value
+    return settings
+
+
+def _auto_k(points, settings, progress):
+    """With k='auto': each point's k from estimate_scales at the call's order (as the tool's --k auto)."""
+    if not settings.pop("k_auto", False):
+        return settings
+    scales = estimate_scales(points, order=settings["order"], threads=settings["threads"], progress=progress)
+    settings["k_per_point"] = np.ascontiguousarray(scales.k, dtype=np.uint32)  # 0 (unfitted): the default k
     return settings
 
 
@@ -259,7 +318,7 @@ def estimate_normals(points, normals=None, *, k=None, order=_default("estimate_n
         restrict_to_consistent_normals=restrict_to_consistent_normals, use_neighbor_normals=use_neighbor_normals,
         neighbor_normal_weight=neighbor_normal_weight, compact_weights=compact_weights))
     settings["orient_with_input_normals"] = normals is not None
-    result, report = _wavejets.estimate_normals(points, normals, settings)
+    result, report = _wavejets.estimate_normals(points, normals, _auto_k(points, settings, progress))
     return _with_report(result, report, return_report)
 
 
@@ -306,7 +365,7 @@ def estimate_curvatures(points, normals=None, *, k=None, order=_default("estimat
         restrict_to_consistent_normals=restrict_to_consistent_normals, use_neighbor_normals=use_neighbor_normals,
         neighbor_normal_weight=neighbor_normal_weight, compact_weights=compact_weights))
     settings["curvature_frame"] = curvature_frame
-    values, report = _wavejets.estimate_curvatures(points, normals, settings)
+    values, report = _wavejets.estimate_curvatures(points, normals, _auto_k(points, settings, progress))
     return _with_report(Curvatures(fitted=report.fitted, **values), report, return_report)
 
 
@@ -350,7 +409,7 @@ def enhance_positions(points, normals=None, k=None, gain=_default("enhance_posit
     if write_normals and use_neighbor_normals and normals is None:
         raise ValueError("normals: use_neighbor_normals with write_normals needs the input normals")
     settings.update(gain=gain, maximum_displacement=maximum_displacement)
-    moved, wavejet_normals, report = _wavejets.enhance_positions(points, normals, settings)
+    moved, wavejet_normals, report = _wavejets.enhance_positions(points, normals, _auto_k(points, settings, progress))
     result = (moved, wavejet_normals) if write_normals else moved
     return _with_report(result, report, return_report)
 
@@ -387,8 +446,102 @@ def enhance_normals(points, normals=None, k=None, gain=_default("enhance_normals
         neighbor_normal_weight=neighbor_normal_weight, compact_weights=compact_weights,
         evaluation_radius=evaluation_radius))
     settings["gain"] = gain
-    result, report = _wavejets.enhance_normals(points, normals, settings)
+    result, report = _wavejets.enhance_normals(points, normals, _auto_k(points, settings, progress))
     return _with_report(result, report, return_report)
+
+
+@dataclass(frozen=True)
+class Scales:
+    """Each point's neighborhood size chosen from a ladder of sizes (`estimate_scales`).
+
+    Pass `k` to any function as its k (with the same order): each point is then fitted with its own
+    number of neighbors. Unfitted points have k == 0 (which the functions read as their default k)
+    and fitted[i] == False."""
+
+    k: np.ndarray                    #: the chosen number of neighbors of each point, shape (N,), int64
+    neighborhood_sizes: np.ndarray   #: the ladder the sizes were chosen from, shape (J,), int64
+    descriptor: np.ndarray           #: |f_2| (1/length) of each point's Wavejet at each size, shape (N, J)
+    fitted: np.ndarray               #: whether a size was chosen, shape (N,), bool
+
+
+def estimate_scales(points, *, order=_default("estimate_normals", "order"), neighborhood_sizes=None,
+                    neighbors_per_coefficient=_default("estimate_normals", "neighbors_per_coefficient"),
+                    minimum_order=_default("estimate_normals", "minimum_order"),
+                    correction_iterations=_default("estimate_normals", "correction_iterations"),
+                    tangent_plane_order=_default("estimate_normals", "tangent_plane_order"),
+                    robust_iterations=_default("estimate_normals", "robust_iterations"),
+                    compact_weights=_default("estimate_normals", "compact_weights"),
+                    threads=None, progress=False, return_report=False):
+    """Chooses each point's number of neighbors among a ladder of sizes.
+
+    Each point is fitted to the nested prefixes of its nearest neighbors (one k-nearest query at
+    the largest size); the size kept is the one of least estimated normal error: a variance term
+    (the noise, the smallest residual variance over the ladder, over the size and radius) plus a
+    bias term (the residual the noise does not explain, over the radius squared). Noisy parts get
+    large sizes, fine details small ones. The C++ function CGAL::wavejet_estimate_scales; the
+    functions' k='auto' calls it. What to expect (measured accuracy against one well-chosen k): the
+    user manual, "Choosing the scale per point".
+
+    Parameters
+    ----------
+    points : array_like, shape (N, 3)
+        The point coordinates, as in estimate_normals.
+    order : int
+        The Wavejet order K of the fits (>= 1); use the same order in the function that takes the sizes.
+    neighborhood_sizes : array_like of ints, optional
+        The ladder: increasing numbers of neighbors, each >= 2 (default: 7 sizes growing by 2^(2/3)
+        from max(10, 1.5 x the coefficients of order K): 10 ... 160 at order 2).
+    neighbors_per_coefficient, minimum_order, correction_iterations, tangent_plane_order,
+    robust_iterations, compact_weights
+        The fit settings, as in estimate_normals.
+    threads, progress, return_report
+        As in estimate_normals.
+
+    Returns
+    -------
+    scales : wavejets.Scales
+        k (N,), neighborhood_sizes (J,), descriptor (N, J), fitted (N,).
+
+    Raises
+    ------
+    ValueError
+        A bad shape, a NaN or infinite coordinate, a ladder that is empty, not increasing or has a
+        size below 2 or above N - 1.
+    TypeError
+        An argument of the wrong type.
+    KeyboardInterrupt
+        Ctrl-C stops the computation; nothing is returned.
+    """
+    points = _coordinates(points, "points")
+    n = points.shape[0]
+    order = _integer(order, "order", 1)
+    settings = dict(order=order, threads=None if threads is None else _integer(threads, "threads", 1),
+                    progress=_progress(progress, "wavejets.estimate_scales"),
+                    neighbors_per_coefficient=_real(neighbors_per_coefficient, "neighbors_per_coefficient", 1.0),
+                    minimum_order=_integer(minimum_order, "minimum_order", 0),
+                    correction_iterations=_integer(correction_iterations, "correction_iterations", 0),
+                    tangent_plane_order=_integer(tangent_plane_order, "tangent_plane_order", 0),
+                    robust_iterations=_integer(robust_iterations, "robust_iterations", 0),
+                    compact_weights=_flag(compact_weights, "compact_weights"))
+    if neighborhood_sizes is not None:
+        ladder = np.asarray(neighborhood_sizes)
+        if ladder.size == 0:
+            raise ValueError("neighborhood_sizes: expected a non-empty list of sizes")
+        if ladder.dtype.kind not in "iu":
+            raise TypeError(f"neighborhood_sizes: expected integers, got dtype {ladder.dtype}")
+        if ladder.ndim != 1 or ladder.size == 0:
+            raise ValueError(f"neighborhood_sizes: expected a non-empty list of sizes, got shape {ladder.shape}")
+        if ladder.min() < 2 or np.any(np.diff(ladder) <= 0):
+            raise ValueError(f"neighborhood_sizes: must increase, each >= 2, got {ladder.tolist()}")
+        settings["neighborhood_sizes"] = [int(size) for size in ladder]
+    if n > 0:
+        largest = settings.get("neighborhood_sizes", [0])[-1] or int(_wavejets.default_neighborhood_sizes(order)[-1])
+        if largest > n - 1:
+            raise ValueError(f"neighborhood_sizes: {largest} neighbors asked, but the {n} points give each point "
+                             f"at most {n - 1}")
+    k, sizes, descriptor, report = _wavejets.estimate_scales(points, settings)
+    return _with_report(Scales(k=k, neighborhood_sizes=sizes, descriptor=descriptor, fitted=report.fitted),
+                        report, return_report)
 
 
 def fit(neighbors, order=2, normal=None, neighbor_normals=None, *, neighborhood_radius=0.0,

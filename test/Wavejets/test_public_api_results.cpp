@@ -26,6 +26,7 @@
 #include <CGAL/wavejet_enhance_positions.h>
 #include <CGAL/wavejet_estimate_curvatures.h>
 #include <CGAL/wavejet_estimate_normals.h>
+#include <CGAL/wavejet_estimate_scales.h>
 
 #include <algorithm>
 #include <cmath>
@@ -221,6 +222,37 @@ static void point_set_functions(const std::vector<PV>& input, Records& out)
     report("enhance_normals", CGAL::wavejet_enhance_normals<Seq>(points, 40, std::complex<double>(1., 2.),
              WJP::order(5, pm)), out);
     out.add_points("enhance_normals", points, true);
+  }
+  {
+    // The scale per point: the chosen sizes and the descriptor, then normals with those sizes and
+    // an order per point.
+    std::vector<std::size_t> index(input.size());
+    std::vector<Point> positions;
+    std::vector<Vector> normals;
+    for(std::size_t i = 0; i < index.size(); ++i)
+    {
+      index[i] = i;
+      positions.push_back(input[i].first);
+      normals.push_back(input[i].second);
+    }
+    std::vector<unsigned int> sizes(index.size(), 0), orders(index.size(), 0);
+    std::vector<std::vector<double> > descriptor(index.size());
+    report("estimate_scales", CGAL::wavejet_estimate_scales<Seq>(index,
+             WJP::neighborhood_size_map(CGAL::make_property_map(sizes)).neighborhood_sizes(std::vector<unsigned int>{12, 20, 32, 50})
+               .scale_descriptor_map(CGAL::make_property_map(descriptor)).point_map(CGAL::make_property_map(positions))), out);
+    for(std::size_t i = 0; i < index.size(); ++i)
+    {
+      std::vector<double> record(1, double(sizes[i]));
+      record.insert(record.end(), descriptor[i].begin(), descriptor[i].end());
+      out.add("estimate_scales[" + std::to_string(i) + "]", record);
+      orders[i] = 2 + unsigned(i % 2);
+    }
+    report("estimate_normals_per_point_scales", CGAL::wavejet_estimate_normals<Seq>(index, 30,
+             WJP::neighborhood_size_map(CGAL::make_property_map(sizes)).order_map(CGAL::make_property_map(orders))
+               .orient_with_input_normals(true).point_map(CGAL::make_property_map(positions))
+               .normal_map(CGAL::make_property_map(normals))), out);
+    for(std::size_t i = 0; i < index.size(); ++i)
+      out.add("estimate_normals_per_point_scales[" + std::to_string(i) + "]", {normals[i].x(), normals[i].y(), normals[i].z()});
   }
 }
 
