@@ -31,6 +31,14 @@ def test_per_point_k_and_order_give_the_bits_of_whole_runs(kitten):
             assert c.mean_curvature[mask].tobytes() == curvatures_per_point.mean_curvature[mask].tobytes()
 
 
+def test_the_default_k_suits_the_highest_order_per_point(kitten):
+    points, normals = kitten
+    order = np.where(np.arange(len(points)) % 2 == 0, 2, 8)   # order 8: 45 coefficients, default k 67 (1.5 x 45, rounded down)
+    per_point = wavejets.estimate_normals(points, normals, order=order)
+    whole = wavejets.estimate_normals(points, normals, k=67, order=8)
+    assert per_point[order == 8].tobytes() == whole[order == 8].tobytes()
+
+
 def test_per_point_k_in_the_enhancements(kitten):
     points, normals = kitten
     k = np.where(points[:, 0] > np.median(points[:, 0]), 20, 50)

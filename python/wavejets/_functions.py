@@ -36,8 +36,8 @@ _DOC = {
          "    Number of nearest neighbors of each fit (the point excluded); default 40, or 1.5 x the\n"
          "    (K+1)(K+2)/2 coefficients of order K when that is more. With neighbor_radius: the\n"
          "    maximum number of neighbors kept in the radius (0: no limit). An array gives each\n"
-         "    point its own k (0: the default k); 'auto' chooses each point's k with\n"
-         "    estimate_scales(points, order=order) first.",
+         "    point its own k (0: the default k of the highest order asked); 'auto' chooses each\n"
+         "    point's k with estimate_scales(points, order=order) first.",
     "order": "order : int, or array_like of N ints\n"
              "    The Wavejet order K (>= 1), lowered per point where the neighbors cannot support it.\n"
              "    An array gives each point its own order (0: the function's default order).",
@@ -231,8 +231,11 @@ def _settings(function, points, normals, k, order, neighbor_radius, threads, pro
             raise ValueError("k: 'auto' chooses the neighbors for one order; give order as one integer")
         settings["k_auto"] = True
         k = None
+    # The default k suits the highest order asked (with an order per point, that of every point).
+    highest_order = max(order, int(settings["order_per_point"].max())) if "order_per_point" in settings and n > 0 \
+        else order
     if k is None:
-        k = _wavejets.default_k(order)
+        k = _wavejets.default_k(highest_order)
     if _is_scalar_integer(k) or isinstance(k, (bool, float)):
         k = _integer(k, "k", 0)
         if neighbor_radius == 0.0:
@@ -240,7 +243,7 @@ def _settings(function, points, normals, k, order, neighbor_radius, threads, pro
     else:
         counts = _per_point_counts(k, "k", n)
         settings["k_per_point"] = counts
-        k = _wavejets.default_k(order)
+        k = _wavejets.default_k(highest_order)
         if neighbor_radius == 0.0 and n > 0:
             _check_count(int(np.where(counts > 0, counts, k).min()), n, "k")
             _check_count(int(np.where(counts > 0, counts, k).max()), n, "k")
