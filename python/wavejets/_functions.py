@@ -191,10 +191,6 @@ def _per_point_counts(value, name, n):
     return np.ascontiguousarray(array, dtype=np.uint32)
 
 
-def _is_scalar_integer(value):
-    return isinstance(value, numbers.Integral) and not isinstance(value, bool)
-
-
 def _progress(progress, label):
     if progress is True:
         return _ProgressBar(label)
@@ -216,7 +212,7 @@ def _settings(function, points, normals, k, order, neighbor_radius, threads, pro
     """The keyword arguments of the compiled call, checked. k='auto' is kept as is (see _auto_k)."""
     n = points.shape[0]
     settings = {}
-    if _is_scalar_integer(order) or order is None or isinstance(order, (bool, float, str)):
+    if np.ndim(order) == 0:
         order = _integer(order, "order", 1)
     else:
         settings["order_per_point"] = _per_point_counts(order, "order", n)
@@ -236,7 +232,7 @@ def _settings(function, points, normals, k, order, neighbor_radius, threads, pro
         else order
     if k is None:
         k = _wavejets.default_k(highest_order)
-    if _is_scalar_integer(k) or isinstance(k, (bool, float)):
+    if np.ndim(k) == 0:
         k = _integer(k, "k", 0)
         if neighbor_radius == 0.0:
             _check_count(k, n, "k")
@@ -245,8 +241,9 @@ def _settings(function, points, normals, k, order, neighbor_radius, threads, pro
         settings["k_per_point"] = counts
         k = _wavejets.default_k(highest_order)
         if neighbor_radius == 0.0 and n > 0:
-            _check_count(int(np.where(counts > 0, counts, k).min()), n, "k")
-            _check_count(int(np.where(counts > 0, counts, k).max()), n, "k")
+            effective = np.where(counts > 0, counts, k)   # 0: the default k
+            _check_count(int(effective.min()), n, "k")
+            _check_count(int(effective.max()), n, "k")
     if threads is not None:
         threads = _integer(threads, "threads", 1)
     progress = _progress(progress, f"wavejets.{function}")
@@ -538,7 +535,7 @@ def estimate_scales(points, *, order=_default("estimate_normals", "order"), neig
             raise ValueError(f"neighborhood_sizes: must increase, each >= 2, got {ladder.tolist()}")
         settings["neighborhood_sizes"] = [int(size) for size in ladder]
     if n > 0:
-        largest = settings.get("neighborhood_sizes", [0])[-1] or int(_wavejets.default_neighborhood_sizes(order)[-1])
+        largest = (settings.get("neighborhood_sizes") or _wavejets.default_neighborhood_sizes(order))[-1]
         if largest > n - 1:
             raise ValueError(f"neighborhood_sizes: {largest} neighbors asked, but the {n} points give each point "
                              f"at most {n - 1}")
