@@ -13,7 +13,7 @@
 // (Monge_via_jet_fitting on each point's k nearest, CGAL's jet_estimate_normals there); PCA normals at
 // their best single k; Ponca's APSS at its best single k (if built with Ponca).
 //
-//   bench_scale_selection [--points N] [--csv-dir DIR] [--no-write] [--quick]
+//   bench_scale_selection [--points N] [--ladder K1,K2,...] [--name NAME] [--csv-dir DIR] [--no-write] [--quick]
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Monge_via_jet_fitting.h>
@@ -31,6 +31,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <cmath>
 #include <functional>
 #include <iostream>
@@ -487,6 +488,22 @@ Surface_result run_surface(const Surface_data& d, const std::vector<unsigned int
   return out;
 }
 
+/// "10,16,25": increasing sizes >= 2; empty if the text is not that.
+std::vector<unsigned int> parse_ladder(const std::string& text)
+{
+  std::vector<unsigned int> ladder;
+  std::istringstream in(text);
+  std::string item;
+  while(std::getline(in, item, ','))
+  {
+    char* end = nullptr;
+    const long k = std::strtol(item.c_str(), &end, 10);
+    if(item.empty() || *end != '\0' || k < 2 || (!ladder.empty() && k <= long(ladder.back()))) return {};
+    ladder.push_back((unsigned int)k);
+  }
+  return ladder;
+}
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -494,17 +511,25 @@ int main(int argc, char** argv)
   std::size_t N = 100000;
   std::string csv_dir = wavejets_bench::source_dir() + "/csv";
   bool write = true;
+  std::vector<unsigned int> ladder = CGAL::Wavejets::default_neighborhood_sizes(2);
+  std::string table_name = "scale_selection"; // the tables: csv/NAME.*.csv
   for(int a = 1; a < argc; ++a)
   {
     const std::string arg = argv[a];
     if(arg == "--points" && a + 1 < argc) N = std::size_t(std::atof(argv[++a]));
     else if(arg == "--csv-dir" && a + 1 < argc) csv_dir = argv[++a];
+    else if(arg == "--ladder" && a + 1 < argc) ladder = parse_ladder(argv[++a]);
+    else if(arg == "--name" && a + 1 < argc) table_name = argv[++a];
     else if(arg == "--no-write") write = false;
     else if(arg == "--quick") N = 5000;
-    else { std::cerr << "usage: bench_scale_selection [--points N] [--csv-dir DIR] [--no-write] [--quick]\n"; return EXIT_FAILURE; }
+    else
+    {
+      std::cerr << "usage: bench_scale_selection [--points N] [--ladder K1,K2,...] [--name NAME] [--csv-dir DIR] [--no-write] [--quick]\n";
+      return EXIT_FAILURE;
+    }
   }
+  if(ladder.empty()) { std::cerr << "--ladder: increasing sizes >= 2, separated by commas\n"; return EXIT_FAILURE; }
   const auto t0 = std::chrono::steady_clock::now();
-  const std::vector<unsigned int> ladder = CGAL::Wavejets::default_neighborhood_sizes(2);
   wavejets_bench::Csv_table summary({"surface", "estimator", "k", "normal error (deg)", "|H error|", "time"});
   wavejets_bench::Csv_table regions({"surface", "region", "automatic: mean k", "normal: automatic", "normal: oracle", "normal: best single k",
                                      "H: automatic", "H: oracle", "H: best single k"});
@@ -535,11 +560,11 @@ int main(int argc, char** argv)
   std::cout << summary.str() << "\n" << targets.str();
   if(write)
   {
-    summary.write(csv_dir, "scale_selection.summary");
-    regions.write(csv_dir, "scale_selection.regions");
-    targets.write(csv_dir, "scale_selection.targets");
-    surfaces.write(csv_dir, "scale_selection.surfaces");
-    context.write(csv_dir, "scale_selection.context");
+    summary.write(csv_dir, table_name + ".summary");
+    regions.write(csv_dir, table_name + ".regions");
+    targets.write(csv_dir, table_name + ".targets");
+    surfaces.write(csv_dir, table_name + ".surfaces");
+    context.write(csv_dir, table_name + ".context");
   }
   return EXIT_SUCCESS;
 }

@@ -61,7 +61,7 @@ def bold_verdict(name, header, row):
 
 # Tables whose rendering marks something: name pattern -> function of (table name, header, row).
 ROW_STYLES = [(re.compile(r"^accuracy_ponca\.h_rmse_(?!grid)"), bold_best_relative_H),
-              (re.compile(r"^(results|accuracy_ponca|scale_selection)\.targets|^filters\.check$"), bold_verdict)]
+              (re.compile(r"^(results|accuracy_ponca|scale_selection(_long_ladder)?)\.targets|^filters\.check$"), bold_verdict)]
 
 
 def markdown_table(name, align, selection=""):
