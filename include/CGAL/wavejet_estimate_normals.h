@@ -222,8 +222,8 @@ normals that are read always orient the frames.
 
 \return a `Wavejets::Processing_report`: points that could not be fitted keep their normal and are counted.
 \throws std::invalid_argument if `k < 2` and no positive `neighbor_radius` (for a point whose
-        `neighborhood_size_map` value is 0), if a `neighborhood_size_map` or `order_map` value is negative, if `neighbor_radius` is negative or
-        not finite, if `order < 1` (or `degree_fitting < 1`), if `order` and `degree_fitting` are both given and
+        `neighborhood_size_map` and `neighbor_radius_map` values are 0), if a `neighborhood_size_map` or `order_map`
+        value is negative, if `neighbor_radius` or a `neighbor_radius_map` value is negative or not finite, if `order < 1` (or `degree_fitting < 1`), if `order` and `degree_fitting` are both given and
         differ, if `degree_monge` is given (it has no meaning here), if `neighbors_per_coefficient < 1`, or if a
         `Point_set_3` has no normal map.
 */

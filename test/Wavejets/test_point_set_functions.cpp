@@ -1041,81 +1041,144 @@ static void test_neighborhood_center_and_written_normals()
 // 8. Per-point scales: neighborhood_size_map and order_map, wavejet_estimate_scales.
 // ---------------------------------------------------------------------------------------------
 
-// 8a. A point fitted with its own k and order (the maps) gets, bitwise, what a run of the whole set
-// at that k and order gives it: normals and mean curvatures on the kitten, three k (one given as 0,
-// the positional k) and two orders spread over the points; in core, tiled (tile_size 500) and
-// Parallel_tag alike. Bad map values are errors.
+// 8a. A point fitted with its own k, order and radius (the maps) gets, bitwise, what a run of the
+// whole set at that k, order and radius gives it: normals and mean curvatures on the kitten. First
+// three k (one given as 0, the positional k) and two orders spread over the points; then two radii
+// (with k 0 there: all the neighbors in the radius) and k 20 spread over the points. In core, tiled
+// (tile_size 500) and Parallel_tag alike. Bad map values are errors.
 static void test_per_point_maps(const PV_range& kitten)
 {
   Point_map pm;
   Normal_map nm;
   const std::size_t N = kitten.size();
-  const unsigned int ks[3] = {12, 30, 0}, positional_k = 20;
-  const std::size_t orders[2] = {3, 0}, default_order = 2;
-  std::vector<unsigned int> k_of(N);
-  std::vector<std::size_t> order_of(N);
-  for(std::size_t i = 0; i < N; ++i) { k_of[i] = ks[i % 3]; order_of[i] = orders[(i / 3) % 2]; }
 
   // The maps are keyed by the elements of the range they are given with (slot_map: by address).
   struct Outputs { PV_range normals; std::vector<double> H; };
-  auto run = [&](auto tag, unsigned int k, auto np, bool per_point) {
+  struct Maps { std::vector<unsigned int> k; std::vector<std::size_t> order; std::vector<double> radius; };
+  struct Settings { std::size_t order; std::size_t tile_size; double radius; };
+  // per_point: the maps (and the settings' tile size); else one run at the settings' order and radius.
+  auto run = [&](auto tag, unsigned int k, const Settings& np, const Maps* per_point) {
     Outputs o{kitten, {}};
     PV_range with_normals = kitten;
-    std::vector<unsigned int> k1 = k_of, k2 = k_of;
-    std::vector<std::size_t> o1 = order_of, o2 = order_of;
     if(per_point)
     {
-      CGAL::wavejet_estimate_normals<decltype(tag)>(o.normals, k, WJP::neighborhood_size_map(slot_map(o.normals, k1))
-        .order_map(slot_map(o.normals, o1)).tile_size(np.tile_size).point_map(pm).normal_map(nm));
-      CGAL::wavejet_estimate_curvatures<decltype(tag)>(with_normals, k, WJP::neighborhood_size_map(slot_map(with_normals, k2))
-        .order_map(slot_map(with_normals, o2)).tile_size(np.tile_size).mean_curvature_map(slot_map(with_normals, o.H))
-        .point_map(pm).normal_map(nm));
+      Maps m1 = *per_point, m2 = *per_point;
+      CGAL::wavejet_estimate_normals<decltype(tag)>(o.normals, k, WJP::neighborhood_size_map(slot_map(o.normals, m1.k))
+        .order_map(slot_map(o.normals, m1.order)).neighbor_radius_map(slot_map(o.normals, m1.radius))
+        .tile_size(np.tile_size).point_map(pm).normal_map(nm));
+      CGAL::wavejet_estimate_curvatures<decltype(tag)>(with_normals, k, WJP::neighborhood_size_map(slot_map(with_normals, m2.k))
+        .order_map(slot_map(with_normals, m2.order)).neighbor_radius_map(slot_map(with_normals, m2.radius))
+        .tile_size(np.tile_size).mean_curvature_map(slot_map(with_normals, o.H)).point_map(pm).normal_map(nm));
     }
     else
     {
-      CGAL::wavejet_estimate_normals<decltype(tag)>(o.normals, k, WJP::order(np.order).point_map(pm).normal_map(nm));
+      CGAL::wavejet_estimate_normals<decltype(tag)>(o.normals, k, WJP::order(np.order).neighbor_radius(np.radius)
+        .point_map(pm).normal_map(nm));
       CGAL::wavejet_estimate_curvatures<decltype(tag)>(with_normals, k, WJP::order(np.order)
-        .mean_curvature_map(slot_map(with_normals, o.H)).point_map(pm).normal_map(nm));
+        .mean_curvature_map(slot_map(with_normals, o.H)).neighbor_radius(np.radius).point_map(pm).normal_map(nm));
     }
     return o;
   };
-  struct Settings { std::size_t order; std::size_t tile_size; };
-  const Outputs mixed = run(Seq(), positional_k, Settings{0, 0}, true);
-  std::size_t compared = 0, differ = 0;
-  for(unsigned int kc = 0; kc < 3; ++kc)
-    for(unsigned int oc = 0; oc < 2; ++oc)
+  // Every point of `group` (group_of[i] == g) against one run at group g's settings.
+  auto compare = [&](const Outputs& mixed, const std::vector<int>& group_of, const std::vector<Settings>& group_settings,
+                     const std::vector<unsigned int>& group_k, const std::string& what) {
+    std::size_t compared = 0, differ = 0;
+    for(std::size_t g = 0; g < group_settings.size(); ++g)
     {
-      const unsigned int k = ks[kc] ? ks[kc] : positional_k;
-      const std::size_t order = orders[oc] ? orders[oc] : default_order;
-      const Outputs single = run(Seq(), k, Settings{order, 0}, false);
+      const Outputs single = run(Seq(), group_k[g], group_settings[g], nullptr);
       for(std::size_t i = 0; i < N; ++i)
-        if(i % 3 == kc && (i / 3) % 2 == oc)
+        if(group_of[i] == int(g))
         {
           ++compared;
           differ += !(same_bits(mixed.normals[i].second, single.normals[i].second) && same_bits(mixed.H[i], single.H[i]));
         }
     }
-  report("8a. per-point k and order == a run at that k and order (bitwise, normals and H, kitten)",
-         compared == N && differ == 0, std::to_string(differ) + " of " + std::to_string(compared) + " points differ");
+    report("8a. " + what + " == a run at those (bitwise, normals and H, kitten)",
+           compared == N && differ == 0, std::to_string(differ) + " of " + std::to_string(compared) + " points differ");
+  };
+  auto same_as = [&](const Outputs& a, const Outputs& b) {
+    bool same = true;
+    for(std::size_t i = 0; i < N; ++i)
+      same = same && same_bits(a.normals[i].second, b.normals[i].second) && same_bits(a.H[i], b.H[i]);
+    return same;
+  };
 
-  const Outputs parallel = run(Par(), positional_k, Settings{0, 0}, true);
-  const Outputs tiled = run(Seq(), positional_k, Settings{0, 500}, true);
-  bool same = true;
+  // k and order per point.
+  const unsigned int ks[3] = {12, 30, 0}, positional_k = 20;
+  const std::size_t orders[2] = {3, 0}, default_order = 2;
+  Maps by_k{std::vector<unsigned int>(N), std::vector<std::size_t>(N), std::vector<double>(N, 0.)};
+  std::vector<int> group_of(N);
   for(std::size_t i = 0; i < N; ++i)
-    same = same && same_bits(parallel.normals[i].second, mixed.normals[i].second) && same_bits(parallel.H[i], mixed.H[i]) &&
-           same_bits(tiled.normals[i].second, mixed.normals[i].second) && same_bits(tiled.H[i], mixed.H[i]);
-  report("8a. per-point k and order: Parallel_tag and tile_size(500) == in core, sequential (bitwise)", same, "");
+  {
+    by_k.k[i] = ks[i % 3];
+    by_k.order[i] = orders[(i / 3) % 2];
+    group_of[i] = int(2 * (i % 3) + (i / 3) % 2);
+  }
+  std::vector<Settings> group_settings;
+  std::vector<unsigned int> group_k;
+  for(unsigned int kc = 0; kc < 3; ++kc)
+    for(unsigned int oc = 0; oc < 2; ++oc)
+    {
+      group_settings.push_back({orders[oc] ? orders[oc] : default_order, 0, 0.});
+      group_k.push_back(ks[kc] ? ks[kc] : positional_k);
+    }
+  const Outputs mixed = run(Seq(), positional_k, Settings{0, 0, 0.}, &by_k);
+  compare(mixed, group_of, group_settings, group_k, "per-point k and order");
+  report("8a. per-point k and order: Parallel_tag and tile_size(500) == in core, sequential (bitwise)",
+         same_as(run(Par(), positional_k, Settings{0, 0, 0.}, &by_k), mixed) &&
+         same_as(run(Seq(), positional_k, Settings{0, 500, 0.}, &by_k), mixed), "");
 
-  auto rejects = [&](std::vector<long long> values, const std::string& expected) {
-    std::vector<long long> v(N, 0);
-    for(std::size_t i = 0; i < N; ++i) v[i] = values[i % values.size()];
+  // A radius per point: the median distance to the 20th nearest neighbor (over 64 points) and 1.5
+  // times it, both with no limit on the count (the map's k 0 stands for the positional k 0), and the
+  // 20 nearest (radius 0 stands for neighbor_radius 0).
+  std::vector<double> kth;
+  for(std::size_t s = 0; s < N; s += (std::max)(std::size_t(1), N / 64))
+  {
+    std::vector<double> d;
+    for(const auto& q : kitten) d.push_back(std::sqrt(CGAL::squared_distance(q.first, kitten[s].first)));
+    std::nth_element(d.begin(), d.begin() + 20, d.end());
+    kth.push_back(d[20]);
+  }
+  std::nth_element(kth.begin(), kth.begin() + kth.size() / 2, kth.end());
+  const double radii[3] = {kth[kth.size() / 2], 1.5 * kth[kth.size() / 2], 0.};
+  Maps by_radius{std::vector<unsigned int>(N), std::vector<std::size_t>(N, 0), std::vector<double>(N)};
+  for(std::size_t i = 0; i < N; ++i)
+  {
+    by_radius.radius[i] = radii[i % 3];
+    by_radius.k[i] = i % 3 == 2 ? 20 : 0;
+    group_of[i] = int(i % 3);
+  }
+  const Outputs by_radius_run = run(Seq(), 0, Settings{0, 0, 0.}, &by_radius);
+  std::size_t fitted = 0; // a fitted point's normal differs from the input's
+  for(std::size_t i = 0; i < N; ++i) fitted += !same_bits(by_radius_run.normals[i].second, kitten[i].second);
+  report("8a. per-point radius: at least 95% of the points are fitted", fitted >= N * 95 / 100,
+         std::to_string(fitted) + " of " + std::to_string(N));
+  compare(by_radius_run, group_of, {{2, 0, radii[0]}, {2, 0, radii[1]}, {2, 0, 0.}}, {0, 0, 20}, "per-point radius");
+  report("8a. per-point radius: Parallel_tag and tile_size(500) == in core, sequential (bitwise)",
+         same_as(run(Par(), 0, Settings{0, 0, 0.}, &by_radius), by_radius_run) &&
+         same_as(run(Seq(), 0, Settings{0, 500, 0.}, &by_radius), by_radius_run), "");
+
+  auto rejects = [&](unsigned int k, std::vector<long long> sizes, std::vector<double> radius, const std::string& expected) {
+    std::vector<long long> size_of(N);
+    std::vector<double> radius_of(N);
+    for(std::size_t i = 0; i < N; ++i) { size_of[i] = sizes[i % sizes.size()]; radius_of[i] = radius[i % radius.size()]; }
     PV_range pts = kitten;
-    try { CGAL::wavejet_estimate_normals<Seq>(pts, 1, WJP::neighborhood_size_map(slot_map(pts, v)).point_map(pm).normal_map(nm)); }
+    try
+    {
+      CGAL::wavejet_estimate_normals<Seq>(pts, k, WJP::neighborhood_size_map(slot_map(pts, size_of))
+        .neighbor_radius_map(slot_map(pts, radius_of)).point_map(pm).normal_map(nm));
+    }
     catch(const std::invalid_argument& e) { return std::string(e.what()).find(expected) != std::string::npos; }
     return false;
   };
+  const double nan = std::numeric_limits<double>::quiet_NaN(), r = radii[0];
   report("8a. neighborhood_size_map: a negative size, and 0 with k < 2, are errors",
-         rejects({20, -3}, "negative") && rejects({20, 0}, "fewer than 2") && !rejects({20, 5}, "neighborhood_size_map"), "");
+         rejects(1, {20, -3}, {0.}, "negative") && rejects(1, {20, 0}, {0.}, "fewer than 2") &&
+         !rejects(1, {20, 5}, {0.}, "neighborhood_size_map"), "");
+  report("8a. neighbor_radius_map: a negative or NaN radius, and 0 with k < 2, are errors; a radius makes k 0 valid",
+         rejects(20, {0}, {r, -r}, "negative or not finite") && rejects(20, {0}, {r, nan}, "negative or not finite") &&
+         rejects(0, {0}, {r, 0.}, "fewer than 2") && !rejects(0, {0}, {r}, "neighbor") &&
+         !rejects(0, {0, 20}, {r, 0.}, "neighbor"), "");
 }
 
 // A plane z = 0 over [0,1]^2 (uniform random) with Gaussian height noise of standard deviation sigma.

@@ -46,6 +46,7 @@ namespace Wavejets {
   X(move_along_input_normals)    /* enhance_positions: move along the input normals             */ \
   X(fitted_map)                  /* writable bool map: true where a Wavejet was fitted          */ \
   X(neighborhood_size_map)       /* readable map: each point's number of neighbors (0: k)       */ \
+  X(neighbor_radius_map)         /* readable map: each point's radius Rf (0: neighbor_radius)     */ \
   X(order_map)                   /* readable map: each point's order K (0: order)               */ \
   X(neighborhood_sizes)          /* estimate_scales: the ladder of numbers of neighbors         */ \
   X(scale_descriptor_map)        /* estimate_scales: writable map of each point's descriptor    */ \

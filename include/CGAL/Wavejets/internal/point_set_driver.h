@@ -83,10 +83,14 @@ struct Driver_settings
   std::vector<unsigned int> k_of_point;    // `neighborhood_size_map`, by index in the range (empty: k everywhere);
                                            // then k is the largest of them (the tiles' halos)
   std::vector<std::size_t> order_of_point; // `order_map`, idem (empty: order everywhere)
+  std::vector<double> radius_of_point;     // `neighbor_radius_map`, idem (empty: neighbor_radius everywhere)
+  double largest_radius = 0.;              // of neighbor_radius and the radius map's (the tiles' halos)
 
-  /// The number of neighbors and the order of the point of index `i` in the range.
+  /// The number of neighbors, the order and the neighborhood radius (0: the k nearest) of the point
+  /// of index `i` in the range.
   unsigned int k_at(std::size_t i) const { return k_of_point.empty() ? k : k_of_point[i]; }
   std::size_t order_at(std::size_t i) const { return order_of_point.empty() ? order : order_of_point[i]; }
+  double radius_at(std::size_t i) const { return radius_of_point.empty() ? neighbor_radius : radius_of_point[i]; }
 };
 
 /// The requested order K: `Wavejets::parameters::order`, or \cgal's `degree_fitting` (the name the jet
@@ -173,7 +177,7 @@ Driver_settings read_settings(PointRange& points, unsigned int k, const NP& np, 
   check_degree_monge(np, fn, computes_curvatures);
   require(std::isfinite(s.neighbor_radius) && s.neighbor_radius >= 0, fn, "neighbor_radius must be finite and >= 0");
   read_per_point_scales(points, np, s);
-  require(s.k >= 2 || s.neighbor_radius > 0, fn, "needs k >= 2 or neighbor_radius > 0");
+  require(s.k >= 2 || s.neighbor_radius > 0 || !s.radius_of_point.empty(), fn, "needs k >= 2 or neighbor_radius > 0");
   s.fitting = read_fitting_options(np, d.fitting, fn);
   s.fitting.neighborhood_radius = s.neighbor_radius;
   s.restrict_to_consistent_normals = choose_parameter(get_parameter(np, wnp::restrict_to_consistent_normals), false);
@@ -199,26 +203,40 @@ Driver_settings read_settings(PointRange& points, unsigned int k, const NP& np, 
   return s;
 }
 
-/// The per-point neighborhood sizes and orders (`neighborhood_size_map`, `order_map`), read in range
-/// order into `s`. A value of 0 stands for the function's `k` (or order); the neighborhood sizes are
-/// numbers of neighbors (with `neighbor_radius`, the most kept within the radius).
+/// The per-point neighborhood radii, sizes and orders (`neighbor_radius_map`, `neighborhood_size_map`,
+/// `order_map`), read in range order into `s`. A value of 0 stands for the function's
+/// `neighbor_radius` (or `k`, or order); the neighborhood sizes are numbers of neighbors (with a
+/// radius, the most kept within it).
 template <class PointRange, class NP>
 void read_per_point_scales(PointRange& points, const NP& np, Driver_settings& s)
 {
   namespace wnp = Wavejets::internal_np;
   using CGAL::parameters::is_default_parameter;
   const char* fn = s.function;
+  s.largest_radius = s.neighbor_radius;
+  if constexpr(!is_default_parameter<NP, wnp::neighbor_radius_map_t>::value)
+  {
+    const auto map = CGAL::parameters::get_parameter(np, wnp::neighbor_radius_map);
+    for(auto it = points.begin(); it != points.end(); ++it)
+    {
+      const double r = to_double(get(map, *it));
+      require(std::isfinite(r) && r >= 0, fn, "neighbor_radius_map: a radius is negative or not finite");
+      s.radius_of_point.push_back(r > 0 ? r : s.neighbor_radius);
+      s.largest_radius = (std::max)(s.largest_radius, r);
+    }
+  }
   if constexpr(!is_default_parameter<NP, wnp::neighborhood_size_map_t>::value)
   {
     const auto map = CGAL::parameters::get_parameter(np, wnp::neighborhood_size_map);
     unsigned int largest = 0;
-    for(auto it = points.begin(); it != points.end(); ++it)
+    std::size_t index = 0;
+    for(auto it = points.begin(); it != points.end(); ++it, ++index)
     {
       const long long k = static_cast<long long>(get(map, *it));
       require(k >= 0 && k <= (std::numeric_limits<unsigned int>::max)(), fn,
               "neighborhood_size_map: a number of neighbors is negative or too large");
       const unsigned int k_i = k > 0 ? (unsigned int)(k) : s.k;
-      require(k_i >= 2 || s.neighbor_radius > 0, fn,
+      require(k_i >= 2 || s.radius_at(index) > 0, fn,
               "neighborhood_size_map: a point has fewer than 2 neighbors (0 stands for k, which is < 2)");
       s.k_of_point.push_back(k_i);
       largest = (std::max)(largest, k_i);
@@ -235,6 +253,10 @@ void read_per_point_scales(PointRange& points, const NP& np, Driver_settings& s)
       s.order_of_point.push_back(order > 0 ? std::size_t(order) : s.order);
     }
   }
+  if(s.k < 2)
+    for(double r : s.radius_of_point)
+      require(r > 0, fn, "neighbor_radius_map: a point has no radius (0 stands for neighbor_radius, which is 0) "
+                         "and k < 2");
 }
 
 /// For the functions that read or write normals whatever their settings.
@@ -451,7 +473,8 @@ public:
     }
     const std::size_t in_range = input.index_in_range(i);
     k_ = settings.k_at(in_range);
-    query.neighbors(i, k_, settings.neighbor_radius, neighbors_, scratch_);
+    radius_ = settings.radius_at(in_range);
+    query.neighbors(i, k_, radius_, neighbors_, scratch_);
     const Eigen::Vector3d p = input.position(i);
     offsets_.assign(1, Eigen::Vector3d::Zero()); // the query point, first
     if(neighbor_normals) normals_of_offsets_.assign(1, (*neighbor_normals)[i]);
@@ -462,7 +485,14 @@ public:
       offsets_.push_back(input.position(j) - p);
       if(neighbor_normals) normals_of_offsets_.push_back((*neighbor_normals)[j]);
     }
-    fitter_.fit(offsets_.data(), offsets_.size(), settings.order_at(in_range), settings.fitting, hint, fit_,
+    const Fitting_options* options = &settings.fitting;
+    if(radius_ != settings.fitting.neighborhood_radius) // this point's own radius (neighbor_radius_map)
+    {
+      options_ = settings.fitting;
+      options_.neighborhood_radius = radius_;
+      options = &options_;
+    }
+    fitter_.fit(offsets_.data(), offsets_.size(), settings.order_at(in_range), *options, hint, fit_,
                 neighbor_normals ? normals_of_offsets_.data() : nullptr);
     return fit_;
   }
@@ -476,13 +506,12 @@ public:
   /// has no other point in that ball), else the search radius (infinite for a k-nearest search).
   /// With estimated neighbors' normals (`first_reach`: the reach of each), also the balls of their fits.
   template <class Input>
-  double reach(std::size_t i, const Input& input, const Driver_settings& settings,
-               const std::vector<double>* first_reach) const
+  double reach(std::size_t i, const Input& input, const std::vector<double>* first_reach) const
   {
     const Eigen::Vector3d p = input.position(i);
     double r = std::numeric_limits<double>::infinity();
     if(k_ > 0 && neighbors_.size() == k_) r = (input.position(neighbors_.back()) - p).norm();
-    else if(settings.neighbor_radius > 0) r = settings.neighbor_radius;
+    else if(radius_ > 0) r = radius_;
     if(first_reach)
     {
       r = (std::max)(r, (*first_reach)[i]);
@@ -494,7 +523,9 @@ public:
 private:
   Fitter fitter_;
   Fit_result fit_;
-  unsigned int k_ = 0; // the k of the last fit
+  unsigned int k_ = 0;    // the k of the last fit
+  double radius_ = 0.;    // and its neighborhood radius (0: the k nearest)
+  Fitting_options options_; // the settings' fitting options with a point's own radius
   std::vector<std::size_t> neighbors_;
   Neighbor_query::Scratch scratch_;
   std::vector<Eigen::Vector3d> offsets_, normals_of_offsets_;
@@ -571,7 +602,7 @@ Pass_result fit_pass(const Input& input, const Driver_settings& settings, const 
       const Fit_result& fit = fitter.fit(i, input, settings, query, neighbor_normals);
       if constexpr(Input::checks_reach)
       {
-        result.reach[i] = fitter.reach(i, input, settings, reach_of_neighbor_normals);
+        result.reach[i] = fitter.reach(i, input, reach_of_neighbor_normals);
         if(checked && !input.holds_ball(i, result.reach[i])) { result.outside[i] = 1; continue; }
       }
       result.status[i] = (unsigned char)(fit.status);

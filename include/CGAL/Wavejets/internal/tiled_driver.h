@@ -248,7 +248,7 @@ inline double first_halo(const Box& box, std::size_t count, const Driver_setting
 {
   if(s.tile_halo > 0) return s.tile_halo;
   const double extent[3] = {box.extent(0), box.extent(1), box.extent(2)};
-  const double r = estimated_halo(extent, count, s.k, s.neighbor_radius);
+  const double r = estimated_halo(extent, count, s.k, s.largest_radius);
   return estimated_normals ? 2. * r : r;
 }
 
