@@ -98,6 +98,18 @@ struct Count_map
   friend unsigned int get(const Count_map& m, std::size_t i) { return m.in ? m.in[i] : 0u; }
 };
 
+/// One radius per point read from a buffer of N, or 0 for every point when the buffer is null (0
+/// stands for the function's neighbor_radius: no per-point value).
+struct Radius_map
+{
+  typedef std::size_t key_type;
+  typedef double value_type;
+  typedef double reference;
+  typedef boost::readable_property_map_tag category;
+  const double* in;
+  friend double get(const Radius_map& m, std::size_t i) { return m.in ? m.in[i] : 0.; }
+};
+
 /// Rows of a buffer of N x `columns` doubles, written from a `std::vector<double>` of that size (the
 /// per-point values of a ladder of sizes).
 struct Row_map
@@ -115,6 +127,8 @@ struct Row_map
 };
 /// A per-point count array passed from Python: None, or a C-contiguous uint32 array of N values.
 typedef py::array_t<std::uint32_t, py::array::c_style> Count_array;
+/// A per-point radius array passed from Python: None, or a C-contiguous float64 array of N values.
+typedef py::array_t<double, py::array::c_style> Radius_array;
 
 /// The settings of one call, read from the keyword arguments the Python layer passes (every key is
 /// optional: a missing one takes the C++ default, of `Fitting_options` or of the function).
@@ -126,6 +140,7 @@ struct Call
   std::optional<Count_array> order_per_point;    // each point's order (0: order), or none
   std::vector<unsigned int> neighborhood_sizes;  // estimate_scales' ladder (empty: the default)
   double neighbor_radius = 0.;
+  std::optional<Radius_array> radius_per_point;  // each point's radius (0: neighbor_radius), or none
   std::size_t order = 0;
   CGAL::Wavejets::Fitting_options fitting;
   bool orient_with_input_normals = false;
@@ -142,6 +157,7 @@ struct Call
 
   Count_map k_map() const { return Count_map{k_per_point ? k_per_point->data() : nullptr}; }
   Count_map order_map() const { return Count_map{order_per_point ? order_per_point->data() : nullptr}; }
+  Radius_map radius_map() const { return Radius_map{radius_per_point ? radius_per_point->data() : nullptr}; }
 };
 
 /// Reads the settings of a call of `function` (its defaults: `function_defaults()`).

@@ -54,15 +54,16 @@ Call read_call(const py::dict& d, CGAL::Wavejets::Point_set_function function, s
   read_if_given(d, "k", k);
   if(k < 0 || k > long(std::numeric_limits<unsigned int>::max())) throw py::value_error("k: out of range");
   c.k = unsigned(k);
-  // Per-point k and order: uint32 arrays of N values, checked by the Python layer.
-  auto read_counts = [&](const char* key, std::optional<Count_array>& out) {
+  // Per-point k, order and radius: uint32 and float64 arrays of N values, checked by the Python layer.
+  auto read_per_point = [&](const char* key, auto& out) {
     if(!d.contains(key) || d[key].is_none()) return;
-    out = d[key].cast<Count_array>();
+    out = d[key].cast<typename std::decay_t<decltype(out)>::value_type>();
     if(out->ndim() != 1 || std::size_t(out->shape(0)) != number_of_points)
       throw py::value_error(std::string(key) + ": expected one value per point");
   };
-  read_counts("k_per_point", c.k_per_point);
-  read_counts("order_per_point", c.order_per_point);
+  read_per_point("k_per_point", c.k_per_point);
+  read_per_point("order_per_point", c.order_per_point);
+  read_per_point("radius_per_point", c.radius_per_point);
   read_if_given(d, "neighborhood_sizes", c.neighborhood_sizes);
   read_if_given(d, "neighbor_radius", c.neighbor_radius);
   read_if_given(d, "neighbors_per_coefficient", c.fitting.neighbors_per_coefficient);

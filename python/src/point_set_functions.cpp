@@ -44,14 +44,15 @@ auto fitting_parameters(const Call& c, const Extra& extra)
 }
 
 /// The named parameters every function takes, after the function's own (`extra`, a pack of the
-/// package's parameters, which must come before CGAL's). The per-point k and order maps are always
-/// given: without per-point values they read 0 (the function's k and order) for every point, which
-/// gives the bits of a call without them.
+/// package's parameters, which must come before CGAL's). The per-point k, order and radius maps are
+/// always given: without per-point values they read 0 (the function's k, order and neighbor_radius)
+/// for every point, which gives the bits of a call without them.
 template <class Extra>
 auto shared_parameters(const Call& c, const Extra& extra, const Callback& callback, const Point_map& points)
 {
   const CGAL::Wavejets::Fitting_options& f = c.fitting;
-  return fitting_parameters(c, extra.neighborhood_size_map(c.k_map()).order_map(c.order_map()))
+  return fitting_parameters(c, extra.neighborhood_size_map(c.k_map()).order_map(c.order_map())
+                                    .neighbor_radius_map(c.radius_map()))
               .seed_with_input_normals(c.seed_with_input_normals)
               .restrict_to_consistent_normals(c.restrict_to_consistent_normals)
               .use_neighbor_normals(c.use_neighbor_normals)

@@ -1,5 +1,5 @@
-"""Per-point scales: a k and an order per point (bitwise those of whole runs at that k and order),
-estimate_scales (known choices on a noisy plane and a clean sphere), k='auto', and bad arguments."""
+"""Per-point scales: a k, an order and a radius per point (bitwise those of whole runs at that k,
+order and radius), estimate_scales (known choices on a noisy plane and a clean sphere), k='auto', and bad arguments."""
 
 import numpy as np
 import pytest
@@ -48,6 +48,38 @@ def test_per_point_k_in_the_enhancements(kitten):
         mask = k == value
         assert moved[mask].tobytes() == wavejets.enhance_positions(points, normals, k=value, gain=2)[mask].tobytes()
         assert tilted[mask].tobytes() == wavejets.enhance_normals(points, normals, k=value, gain=2)[mask].tobytes()
+
+
+def kth_neighbor_distance(points, k, samples=64):
+    """The median distance from a sample of the points to their k-th nearest neighbor."""
+    picked = points[:: max(1, len(points) // samples)]
+    d = np.linalg.norm(points[None, :, :] - picked[:, None, :], axis=2)
+    return float(np.median(np.sort(d, axis=1)[:, k]))
+
+
+def test_per_point_radius_gives_the_bits_of_whole_runs(kitten):
+    points, normals = kitten
+    r = kth_neighbor_distance(points, 20)
+    n = len(points)
+    # Each point's k caps its neighbors in its radius (0 in an array of k: the default k, 40).
+    radius = np.resize([r, 1.5 * r, 0.0], n)    # 0: the k nearest neighbors
+    k = np.resize([30, 0, 20], n)
+    per_point = wavejets.estimate_normals(points, normals, k=k, neighbor_radius=radius)
+    curvatures, report = wavejets.estimate_curvatures(points, normals, k=k, neighbor_radius=radius,
+                                                      return_report=True)
+    assert report.number_of_fitted_points > 0.95 * n
+    for group, whole in enumerate((dict(k=30, neighbor_radius=r), dict(k=40, neighbor_radius=1.5 * r), dict(k=20))):
+        mask = np.arange(n) % 3 == group
+        assert per_point[mask].tobytes() == wavejets.estimate_normals(points, normals, **whole)[mask].tobytes()
+        c = wavejets.estimate_curvatures(points, normals, **whole)
+        assert curvatures.mean_curvature[mask].tobytes() == c.mean_curvature[mask].tobytes()
+    # k = 0 (one integer): every neighbor in each point's radius.
+    radius = np.resize([r, 1.5 * r], n)
+    moved = wavejets.enhance_positions(points, normals, k=0, neighbor_radius=radius, gain=2)
+    for group, value in enumerate((r, 1.5 * r)):
+        mask = np.arange(n) % 2 == group
+        whole = wavejets.enhance_positions(points, normals, k=0, neighbor_radius=value, gain=2)
+        assert moved[mask].tobytes() == whole[mask].tobytes()
 
 
 def test_a_noisy_plane_chooses_the_largest_size():
@@ -104,6 +136,18 @@ def test_bad_scale_arguments_are_errors(kitten):
         wavejets.estimate_normals(points, k="automatic")
     with pytest.raises(ValueError, match="neighbor_radius"):
         wavejets.estimate_normals(points, k="auto", neighbor_radius=0.1)
+    with pytest.raises(ValueError, match="neighbor_radius"):
+        wavejets.estimate_normals(points, k="auto", neighbor_radius=np.full(n, 0.1))
+    with pytest.raises(ValueError, match="one value per point"):
+        wavejets.estimate_normals(points, neighbor_radius=np.full(n + 1, 0.1))
+    with pytest.raises(ValueError, match="finite and >= 0"):
+        wavejets.estimate_normals(points, neighbor_radius=np.resize([0.1, -0.1], n))
+    with pytest.raises(ValueError, match="finite and >= 0"):
+        wavejets.estimate_normals(points, neighbor_radius=np.resize([0.1, np.nan], n))
+    with pytest.raises(TypeError, match="real numbers"):
+        wavejets.estimate_normals(points, neighbor_radius=np.full(n, "0.1"))
+    with pytest.raises(ValueError, match="must be >= 2"):   # the points without a radius need k >= 2
+        wavejets.estimate_normals(points, k=0, neighbor_radius=np.resize([0.1, 0.0], n))
     with pytest.raises(ValueError, match="one integer"):
         wavejets.estimate_normals(points, k="auto", order=np.full(n, 2))
     with pytest.raises(ValueError, match="must increase"):

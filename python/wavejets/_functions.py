@@ -41,9 +41,11 @@ _DOC = {
     "order": "order : int, or array_like of N ints\n"
              "    The Wavejet order K (>= 1), lowered per point where the neighbors cannot support it.\n"
              "    An array gives each point its own order (0: the function's default order).",
-    "neighbor_radius": "neighbor_radius : float\n"
+    "neighbor_radius": "neighbor_radius : float, or array_like of N floats\n"
                        "    A fixed neighborhood radius Rf (model units) instead of the k nearest neighbors;\n"
-                       "    0 uses k nearest neighbors, Rf being the distance to the farthest.",
+                       "    0 uses k nearest neighbors, Rf being the distance to the farthest. An array\n"
+                       "    gives each point its own radius (0: its k nearest neighbors); each point's k\n"
+                       "    caps the neighbors kept in its radius (k=0, one integer: no limit).",
     "neighbors_per_coefficient": "neighbors_per_coefficient : float\n"
                                  "    Adaptive order: K is lowered until a neighborhood has this many points per\n"
                                  "    coefficient (>= 1).",
@@ -191,6 +193,19 @@ def _per_point_counts(value, name, n):
     return np.ascontiguousarray(array, dtype=np.uint32)
 
 
+def _per_point_radii(value, n):
+    """A per-point neighbor_radius: an (N,) float64 C-contiguous array of finite reals >= 0."""
+    array = np.asarray(value)
+    if array.dtype.kind not in "iuf":
+        raise TypeError(f"neighbor_radius: expected real numbers, got dtype {array.dtype}")
+    if array.shape != (n,):
+        raise ValueError(f"neighbor_radius: expected one value per point, shape ({n},), got shape {array.shape}")
+    array = np.ascontiguousarray(array, dtype=np.float64)
+    if n > 0 and not (np.isfinite(array).all() and array.min() >= 0):
+        raise ValueError("neighbor_radius: every value must be finite and >= 0 (0: the k nearest neighbors)")
+    return array
+
+
 def _progress(progress, label):
     if progress is True:
         return _ProgressBar(label)
@@ -217,11 +232,17 @@ def _settings(function, points, normals, k, order, neighbor_radius, threads, pro
     else:
         settings["order_per_point"] = _per_point_counts(order, "order", n)
         order = _default(function, "order")
-    neighbor_radius = _real(neighbor_radius, "neighbor_radius", 0.0)
+    if np.ndim(neighbor_radius) == 0:
+        neighbor_radius = _real(neighbor_radius, "neighbor_radius", 0.0)
+        uses_k = None if neighbor_radius == 0.0 else np.zeros(n, dtype=bool)   # None: every point
+    else:
+        settings["radius_per_point"] = _per_point_radii(neighbor_radius, n)
+        neighbor_radius = 0.0
+        uses_k = settings["radius_per_point"] == 0.0
     if isinstance(k, str):
         if k != "auto":
             raise ValueError(f"k: expected an integer, an array of integers or 'auto', got {k!r}")
-        if neighbor_radius > 0:
+        if neighbor_radius > 0 or "radius_per_point" in settings:
             raise ValueError("k: 'auto' chooses numbers of neighbors; it excludes neighbor_radius")
         if "order_per_point" in settings:
             raise ValueError("k: 'auto' chooses the neighbors for one order; give order as one integer")
@@ -232,16 +253,19 @@ def _settings(function, points, normals, k, order, neighbor_radius, threads, pro
         else order
     if k is None:
         k = _wavejets.default_k(highest_order)
+    # The k of the points searched by k nearest neighbors (those without a radius) must be >= 2.
     if np.ndim(k) == 0:
         k = _integer(k, "k", 0)
-        if neighbor_radius == 0.0:
+        if uses_k is None or (n > 0 and uses_k.any()):
             _check_count(k, n, "k")
     else:
         counts = _per_point_counts(k, "k", n)
         settings["k_per_point"] = counts
         k = _wavejets.default_k(highest_order)
-        if neighbor_radius == 0.0 and n > 0:
-            effective = np.where(counts > 0, counts, k)   # 0: the default k
+        effective = np.where(counts > 0, counts, k)   # 0: the default k
+        if uses_k is not None:
+            effective = effective[uses_k]
+        if effective.size > 0:
             _check_count(int(effective.min()), n, "k")
             _check_count(int(effective.max()), n, "k")
     if threads is not None:
