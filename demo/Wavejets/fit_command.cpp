@@ -71,17 +71,23 @@ Automatic_scales estimate_scales(Point_set& points, std::size_t order, bool desc
   namespace WP = CGAL::Wavejets::parameters;
   const std::vector<unsigned int> ladder = CGAL::Wavejets::default_neighborhood_sizes(order);
   Automatic_scales a;
-  a.sizes.k = zero_column<int>(points, "scale_k");
+  const Point_set::Property_map<int> scale_k = zero_column<int>(points, "scale_k");
   Descriptor_columns_map descriptor; // no column: nothing written
   if(descriptor_columns)
     for(unsigned int k : ladder) descriptor.columns.push_back(zero_column<double>(points, "f2_k" + std::to_string(k)));
   const CGAL::Wavejets::Processing_report r = CGAL::wavejet_estimate_scales<Concurrency_tag>(points,
-    WP::order(order).neighborhood_size_map(a.sizes.k).neighborhood_sizes(ladder).scale_descriptor_map(descriptor)
+    WP::order(order).neighborhood_size_map(scale_k).neighborhood_sizes(ladder).scale_descriptor_map(descriptor)
       .callback(cb).point_map(points.point_map()));
   // The share of the fitted points at each size (an unfitted point keeps scale_k 0, and each function
   // then fits it at the largest size).
   std::map<int, std::size_t> count;
-  for(Point_set::Index i : points) ++count[a.sizes.k[i]];
+  auto k = std::make_shared<std::vector<unsigned int> >(points.size(), 0u);
+  for(Point_set::Index i : points)
+  {
+    ++count[scale_k[i]];
+    (*k)[std::size_t(i)] = unsigned(scale_k[i]);
+  }
+  a.sizes.k.values = k;
   a.summary = "Scales chosen per point (order " + std::to_string(order) + "; " + std::to_string(r.number_of_unfitted_points) +
               " without one, fitted at " + std::to_string(ladder.back()) + " neighbors):";
   for(unsigned int k : ladder)
@@ -92,6 +98,31 @@ Automatic_scales estimate_scales(Point_set& points, std::size_t order, bool desc
   }
   a.summary += ".";
   return a;
+}
+
+namespace {
+template <class T>
+bool copy_column(const Point_set& points, const std::string& name, std::vector<double>& out)
+{
+  bool found;
+  Point_set::Property_map<T> m;
+  std::tie(m, found) = CGAL::Wavejets::internal::find_property_map<T>(points, name);
+  if(!found) return false;
+  out.assign(points.size(), 0.);
+  for(Point_set::Index i : points) out[std::size_t(i)] = double(m[i]);
+  return true;
+}
+} // namespace
+
+std::optional<std::vector<double> > numeric_column(const Point_set& points, const std::string& name)
+{
+  std::vector<double> v;
+  if(copy_column<double>(points, name, v) || copy_column<float>(points, name, v) || copy_column<int>(points, name, v) ||
+     copy_column<unsigned int>(points, name, v) || copy_column<short>(points, name, v) ||
+     copy_column<unsigned short>(points, name, v) || copy_column<signed char>(points, name, v) ||
+     copy_column<unsigned char>(points, name, v))
+    return v;
+  return std::nullopt;
 }
 
 std::string report_text(const CGAL::Wavejets::Processing_report& r)

@@ -20,6 +20,7 @@
 #include <array>
 #include <complex>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <tuple>
@@ -109,23 +110,43 @@ struct In_tile
   }
 };
 
-/// With --k auto: each point's number of neighbors, in the output column scale_k, passed to every
-/// function call (as a Tiling is).
-struct With_scales
+/// One value per point, by point index, or 0 for every point when it has none (0 stands for the
+/// command's --k, --radius or --order).
+template <class T>
+struct Per_point_values
 {
-  Point_set::Property_map<int> k;
+  typedef Point_set::Index key_type;
+  typedef T value_type;
+  typedef T reference;
+  typedef boost::readable_property_map_tag category;
+  std::shared_ptr<const std::vector<T> > values;
+  friend T get(const Per_point_values& m, key_type i) { return m.values ? (*m.values)[std::size_t(i)] : T(0); }
+};
+
+/// Each point's own neighborhood (--k auto, or --k, --radius, --order given a column's name): its
+/// number of neighbors, radius and order, passed to every function call (as a Tiling is).
+struct Per_point_scales
+{
+  Per_point_values<unsigned int> k;
+  Per_point_values<double> radius;
+  Per_point_values<unsigned int> order;
   template <class NP> auto operator()(const NP& np) const
   {
-    return CGAL::Wavejets::parameters::neighborhood_size_map(k, np);   // after CGAL's parameters: prepended
+    namespace WP = CGAL::Wavejets::parameters;   // after CGAL's parameters: prepended
+    return WP::order_map(order, WP::neighbor_radius_map(radius, WP::neighborhood_size_map(k, np)));
   }
 };
 /// What --k auto chose: the sizes (`tiling()`) and a sentence for the summary.
 struct Automatic_scales
 {
-  With_scales sizes;
+  Per_point_scales sizes;
   std::string summary;
-  const With_scales& tiling() const { return sizes; }
+  const Per_point_scales& tiling() const { return sizes; }
 };
+
+/// The values of the numeric property `name` of `points` (any of the PLY types), by point index;
+/// none if it has no such property.
+std::optional<std::vector<double> > numeric_column(const Point_set& points, const std::string& name);
 /// --k auto: `wavejet_estimate_scales()` at `order` with the default ladder, into the column scale_k
 /// (and with `descriptor_columns`, the columns f2_k<N>: |f_2| at each size N of the ladder).
 Automatic_scales estimate_scales(Point_set& points, std::size_t order, bool descriptor_columns, const Callback& cb);

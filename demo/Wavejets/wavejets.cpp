@@ -42,6 +42,7 @@
 #include <functional>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -107,10 +108,10 @@ const Command_info commands[] = {
 
 struct Flag_info { const char* name; const char* arg; unsigned commands; const char* help; };
 const Flag_info flags[] = {
-  {"--k", "N", FITS, "neighbors per fit (k nearest: Rf per point follows the sampling; default 40, 1.5 x the coefficients above order 6); with --radius: at most N nearest within the radius (0: no limit); auto: each point's own, chosen among 7 sizes (10 to 160 at order 2; in memory only), written as the column scale_k (curvature: also f2_k<N>, |f_2| at each size)"},
-  {"--radius", "R", FITS, "neighborhood radius in model units (points with too few neighbors inside are reported, not fitted)"},
+  {"--k", "N", FITS, "neighbors per fit (k nearest: Rf per point follows the sampling; default 40, 1.5 x the coefficients above order 6); with --radius: at most N nearest within the radius (0: no limit); auto: each point's own, chosen among 7 sizes (10 to 160 at order 2; in memory only), written as the column scale_k (curvature: also f2_k<N>, |f_2| at each size); a column's name (e.g. scale_k): each point's own k from that property of the input (0: the default; in memory only)"},
+  {"--radius", "R", FITS, "neighborhood radius in model units (points with too few neighbors inside are reported, not fitted); a column's name: each point's own radius from that property of the input (0: its k nearest neighbors, --k N then needed; in memory only)"},
   {"--radius-factor", "F", FITS, "instead of --k and --radius: one radius of F x the average spacing to the 6 nearest neighbors (e.g. 4)"},
-  {"--order", "K", FITS, "Wavejet order (default 2 for normals and curvature, 4 for the enhance commands)"},
+  {"--order", "K", FITS, "Wavejet order (default 2 for normals and curvature, 4 for the enhance commands); a column's name: each point's own order from that property of the input (0: the default; in memory only)"},
   {"--gain", "G|RE,IM", POSITIONS | NORMAL_FILTER, "filter gain (default 2); enhance-normals takes a complex gain, e.g. 0,2 for 2i (twist)"},
   {"--evaluation-radius", "S", POSITIONS | NORMAL_FILTER, "radius s of the enclosed-area coefficients a_n(s), model units (default: the fit radius Rf)"},
   {"--max-displacement", "D|none", POSITIONS, "clamp each point's motion to D model units (default Rf/2 per point; none: no clamp)"},
@@ -207,7 +208,9 @@ void print_command_help(std::ostream& os, const Command_info& c)
   if(c.bit & FITS)
     os << "\nNeighborhoods: by default the 40 nearest neighbors (1.5 x the coefficients above order 6): Rf\n"
           "follows the density, so non-uniform samplings are fitted everywhere; --k N: N nearest; --radius\n"
-          "(with or without --k): a fixed radius; --radius-factor F: a radius of F x the average spacing.\n";
+          "(with or without --k): a fixed radius; --radius-factor F: a radius of F x the average spacing;\n"
+          "--k auto: each point's own k; --k, --radius, --order NAME: each point's own, from the input's\n"
+          "property NAME (e.g. the scale_k that --k auto wrote).\n";
 }
 
 // ------------------------------------------------------------------------------------------------
@@ -219,6 +222,7 @@ struct Options
   bool has_k = false;
   bool auto_k = false;                     // --k auto: wavejet_estimate_scales() per point
   unsigned int k = 0;
+  std::string k_column, radius_column, order_column;   // --k, --radius, --order given a property's name
   double radius = 0., radius_factor = 0.;  // radius_factor 0: not given
   std::size_t order = 0;                 // 0: the command's default
   bool has_gain = false;
@@ -257,6 +261,12 @@ long parse_integer(const std::string& flag, const std::string& text, long lo, lo
   if(text.empty() || end != text.c_str() + text.size() || errno == ERANGE || v < lo || v > hi)
     throw Usage_error(flag + " expects an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got '" + text + "'");
   return v;
+}
+
+/// A property's name (--k, --radius, --order COLUMN): it starts with a letter or an underscore.
+bool is_column_name(const std::string& text)
+{
+  return !text.empty() && (std::isalpha(static_cast<unsigned char>(text[0])) || text[0] == '_');
 }
 
 std::vector<double> parse_list(const std::string& flag, const std::string& text)
@@ -336,9 +346,12 @@ Options parse_command_line(const std::vector<std::string>& args)
     if(!f->arg[0] && inline_value) throw Usage_error(a + " takes no value");
 
     if(a == "--help") { print_command_help(std::cout, *o.command); std::exit(EXIT_SUCCESS); }
-    else if(a == "--k" && value == "auto") { o.auto_k = true; o.has_k = false; }
-    else if(a == "--k") { o.k = unsigned(parse_integer(a, value, 0, 100000)); o.has_k = true; o.auto_k = false; }
+    else if(a == "--k" && value == "auto") { o.auto_k = true; o.has_k = false; o.k_column.clear(); }
+    else if(a == "--k" && is_column_name(value)) { o.k_column = value; o.auto_k = false; o.has_k = false; }
+    else if(a == "--k") { o.k = unsigned(parse_integer(a, value, 0, 100000)); o.has_k = true; o.auto_k = false; o.k_column.clear(); }
+    else if(a == "--radius" && is_column_name(value)) { o.radius_column = value; o.radius = 0.; }
     else if(a == "--radius") {
+      o.radius_column.clear();
       o.radius = parse_number(a, value);
       if(o.radius <= 0) throw Usage_error("--radius must be > 0");
     }
@@ -346,7 +359,8 @@ Options parse_command_line(const std::vector<std::string>& args)
       o.radius_factor = parse_number(a, value);
       if(o.radius_factor <= 0) throw Usage_error("--radius-factor must be > 0");
     }
-    else if(a == "--order") o.order = std::size_t(parse_integer(a, value, 1, 20));
+    else if(a == "--order" && is_column_name(value)) { o.order_column = value; o.order = 0; }
+    else if(a == "--order") { o.order = std::size_t(parse_integer(a, value, 1, 20)); o.order_column.clear(); }
     else if(a == "--gain") {
       const std::vector<double> g = parse_list(a, value);
       if(g.size() > 2) throw Usage_error("--gain expects G or RE,IM, got '" + value + "'");
@@ -400,7 +414,10 @@ Options parse_command_line(const std::vector<std::string>& args)
   if(bit == RENDER && out_ext != "png") throw Usage_error("the output of render must be a .png file: " + o.files.back());
   if(bit != RENDER && out_ext != "ply" && out_ext != "off" && out_ext != "obj")
     throw Usage_error("the output must be a .ply file (or .off / .obj for a mesh input): " + o.files.back());
-  if(o.radius > 0 && o.radius_factor > 0) throw Usage_error("give --radius or --radius-factor, not both");
+  if((o.radius > 0 || !o.radius_column.empty()) && o.radius_factor > 0)
+    throw Usage_error("give --radius or --radius-factor, not both");
+  if(o.auto_k && (!o.radius_column.empty() || !o.order_column.empty()))
+    throw Usage_error("--k auto chooses numbers of neighbors for one order: not with a --radius or --order column");
   if(o.max_memory > 0 && o.tile_size > 0) throw Usage_error("give --max-memory or --tile-size, not both");
   if(o.job.empty() != o.stage.empty()) throw Usage_error("--job and --stage go together");
   if(o.width == 0) o.width = 800 * int(o.files.size() - 1);   // 800 per panel
@@ -465,8 +482,62 @@ struct Neighborhood
   unsigned int k = 0;
   double radius = 0.;
   bool automatic = false;  // --k auto: k per point (k is then the largest size)
+  std::optional<wavejets_demo::Per_point_scales> columns;   // --k, --radius or --order given a column's name
   std::string description;
 };
+
+bool has_scale_columns(const Options& o)
+{
+  return !o.k_column.empty() || !o.radius_column.empty() || !o.order_column.empty();
+}
+
+/// The values of the property `name` of `points` (--k, --radius or --order COLUMN, `flag`) as T, checked:
+/// finite, in [0, highest], whole numbers if `whole`. Their largest value goes to `largest`, and a phrase
+/// to `description` ("k from 'scale_k' (10 to 160)").
+template <class T>
+std::shared_ptr<const std::vector<T> > read_scale_column(const Point_set& points, const std::string& name, const std::string& flag,
+                                                         double highest, bool whole, const std::string& path, double& largest,
+                                                         std::vector<std::string>& description)
+{
+  const std::optional<std::vector<double> > column = wavejets_demo::numeric_column(points, name);
+  if(!column) throw File_error(path + ": has no numeric property '" + name + "' (--" + flag + " " + name + ")");
+  auto values = std::make_shared<std::vector<T> >();
+  double lowest = std::numeric_limits<double>::infinity();
+  largest = 0.;
+  for(std::size_t i = 0; i < column->size(); ++i) {
+    const double v = (*column)[i];
+    if(!(std::isfinite(v) && v >= 0 && v <= highest && (!whole || v == std::floor(v))))
+      throw File_error(path + ": property '" + name + "' (--" + flag + "): point " + std::to_string(i) + " has " + format(v) +
+                       ", expected " + (whole ? "an integer in [0, " + std::to_string(long(highest)) + "]" : "a finite number >= 0"));
+    values->push_back(T(v));
+    lowest = std::min(lowest, v);
+    largest = std::max(largest, v);
+  }
+  if(!column->empty())
+    description.push_back(flag + " from '" + name + "' (" + format(lowest) + " to " + format(largest) + ")");
+  return values;
+}
+
+/// --k, --radius, --order COLUMN: each point's values, and the order whose default k suits every point.
+wavejets_demo::Per_point_scales read_scale_columns(const Options& o, const Point_set& points, const std::string& path,
+                                                   std::size_t& highest_order, std::string& description)
+{
+  wavejets_demo::Per_point_scales scales;
+  std::vector<std::string> parts;
+  double largest = 0.;
+  if(!o.k_column.empty())
+    scales.k.values = read_scale_column<unsigned int>(points, o.k_column, "k", 100000, true, path, largest, parts);
+  if(!o.radius_column.empty())
+    scales.radius.values = read_scale_column<double>(points, o.radius_column, "radius",
+                                                     std::numeric_limits<double>::max(), false, path, largest, parts);
+  if(!o.order_column.empty()) {
+    scales.order.values = read_scale_column<unsigned int>(points, o.order_column, "order", 20, true, path, largest, parts);
+    highest_order = std::max(highest_order, std::size_t(largest));
+  }
+  description = "per point (0: the above)";
+  for(std::size_t i = 0; i < parts.size(); ++i) description += (i ? ", " : ": ") + parts[i];
+  return scales;
+}
 
 Neighborhood choose_neighborhood(const Options& o, std::size_t order, const Point_set& points, const std::string& path)
 {
@@ -481,7 +552,19 @@ Neighborhood choose_neighborhood(const Options& o, std::size_t order, const Poin
     n.description = "nearest neighbors, per point among " + sizes + " (--k auto)";
     return n;
   }
-  if(o.radius > 0) {
+  std::size_t highest_order = order;   // the default k suits every point's order
+  std::string per_point;
+  if(has_scale_columns(o)) n.columns = read_scale_columns(o, points, path, highest_order, per_point);
+  if(!o.radius_column.empty()) {
+    n.k = o.has_k ? o.k : 0;
+    const std::vector<double>& radius = *n.columns->radius.values;
+    const auto zero = std::find(radius.begin(), radius.end(), 0.);
+    if(zero != radius.end() && n.k < 2)
+      throw File_error(path + ": property '" + o.radius_column + "' (--radius): point " + std::to_string(zero - radius.begin()) +
+                       " has 0 (its k nearest neighbors): give --k N (N >= 2) for such points");
+    n.description = "the neighbors in each point's radius" +
+                    std::string(n.k ? ", at most " + std::to_string(n.k) + ", else its " + std::to_string(n.k) + " nearest" : "");
+  } else if(o.radius > 0) {
     n.radius = o.radius;
     n.k = o.has_k ? o.k : 0;
     n.description = "radius " + format(n.radius) + (n.k ? ", at most " + std::to_string(n.k) + " neighbors" : "");
@@ -498,9 +581,10 @@ Neighborhood choose_neighborhood(const Options& o, std::size_t order, const Poin
                     (n.k ? ", at most " + std::to_string(n.k) + " neighbors" : "");
   } else {
     if(o.has_k && o.k < 2) throw Usage_error("--k must be >= 2 without --radius");
-    n.k = o.has_k ? o.k : unsigned(CGAL::Wavejets::default_number_of_neighbors(order));
+    n.k = o.has_k ? o.k : unsigned(CGAL::Wavejets::default_number_of_neighbors(highest_order));
     n.description = std::to_string(n.k) + " nearest neighbors" + (o.has_k ? "" : " (default)");
   }
+  if(n.columns) n.description += "; " + per_point;
   return n;
 }
 
@@ -742,6 +826,8 @@ int run_streamed_command(const Options& o, Progress& progress)
   const unsigned bit = o.command->bit;
   const std::size_t order = o.order ? o.order : CGAL::Wavejets::function_defaults(library_function(bit)).order;
   if(o.auto_k) throw Usage_error("--k auto runs in memory: not with --max-memory, --tile-size or --job");
+  if(has_scale_columns(o))
+    throw Usage_error("--k, --radius or --order given a column's name run in memory: not with --max-memory, --tile-size or --job");
   const Neighborhood n = choose_neighborhood(o, order, Point_set(), in_path);
   const wavejets_demo::Fit_settings s = fit_settings(o, order, n, o.consistent_normals.value_or(false));
   wavejets_demo::Streaming_settings settings;
@@ -820,7 +906,9 @@ int run_fit_command_on_input(const Options& o, Progress& progress)
     log.lines.push_back(scales.summary);
     log.fit_seconds += seconds_since(t);
     fit(scales.tiling());
-  } else
+  } else if(n.columns)
+    fit(*n.columns);
+  else
     fit(wavejets_demo::In_core{});
 
   const Clock::time_point tw = Clock::now();
@@ -887,16 +975,9 @@ wavejets_demo::Cloud to_cloud(const std::string& path, const Options& o, Progres
     progress.done();
   }
   if(!o.color_by.empty()) {
-    bool found;
-    Point_set::Property_map<double> d;
-    std::tie(d, found) = CGAL::Wavejets::internal::find_property_map<double>(points, o.color_by);
-    Point_set::Property_map<float> f;
-    if(!found) {
-      std::tie(f, found) = CGAL::Wavejets::internal::find_property_map<float>(points, o.color_by);
-      if(!found) throw File_error(path + ": has no scalar property '" + o.color_by + "'");
-      for(Point_set::Index i : points) c.scalar.push_back(f[i]);
-    } else
-      for(Point_set::Index i : points) c.scalar.push_back(d[i]);
+    std::optional<std::vector<double> > column = wavejets_demo::numeric_column(points, o.color_by);
+    if(!column) throw File_error(path + ": has no scalar property '" + o.color_by + "'");
+    c.scalar = std::move(*column);
   }
   for(Point_set::Index i : points) {
     const Point& p = points.point(i);

@@ -189,7 +189,8 @@ cli_case_pwn() {
 }
 
 cli_case_bad_flags() {
-  for args in "normals" "nosuchcommand a b" "normals $kitten out.ply --k" "normals $kitten out.ply --k abc" \
+  # (--k abc names a property of the input: cli_case_scale_columns)
+  for args in "normals" "nosuchcommand a b" "normals $kitten out.ply --k" "normals $kitten out.ply --k 4x" \
               "normals $kitten out.ply --order 0" "normals $kitten out.xyz" "enhance-positions $kitten out.ply --gain 0,2" \
               "normals $kitten out.ply --gain 2" "enhance-positions $kitten out.ply --max-displacement -1" \
               "normals $kitten out.ply --bogus" "render $kitten out.ply" "normals $kitten out.ply --k 1" \
@@ -405,6 +406,44 @@ cli_case_auto_scales() {
   for c in scale_k f2_k10 f2_k160 mean_curvature; do grep -aq "property [a-z]* $c\$" auto_c.ply || fail "curvature: no $c column"; done
   expect_error "--k auto" out.ply -- normals "$kitten" out.ply --k auto --tile-size 1000
   expect_error "--k auto" out.ply -- normals "$kitten" out.ply --k auto --radius 0.1
+}
+
+# The vertex lines of the ASCII PLY MIXED equal those of A where its field FIELD is VA, of B where it
+# is VB (the whole line: 17 digits, so the same doubles); both kinds of points are numerous.
+same_per_point() { # MIXED FIELD VA A VB B
+  paste -d'|' <(sed '1,/^end_header/d' "$1") <(sed '1,/^end_header/d' "$4") <(sed '1,/^end_header/d' "$6") |
+    awk -F'|' -v c="$2" -v a="$3" -v b="$5" '{ split($1, f, " ");
+      if(f[c] == a) { na++; bad += ($1 != $2) } else if(f[c] == b) { nb++; bad += ($1 != $3) } else bad++ }
+      END { print "  " na " points at " a ", " nb " at " b ", " bad + 0 " differ"; exit !(bad == 0 && na > 1000 && nb > 1000) }'
+}
+
+cli_case_scale_columns() {
+  # --k, --radius, --order COLUMN: each point's own value from a property of the input (any PLY
+  # type); each point gets what a run with its value as the flag gives it. In memory only; a
+  # missing column or a bad value is an error naming the file and the property.
+  local n; n=$(wc -l < "$kitten")
+  { printf "ply\nformat ascii 1.0\nelement vertex %d\n" "$n"
+    for p in x y z nx ny nz; do echo "property float $p"; done
+    printf "property uchar kk\nproperty float rr\nproperty short oo\nproperty float half\nend_header\n"
+    # k 12 or 30 by the side of x; radius 1/16 or 3/32 (floats exactly) by y; order 3 or 0 (the default) by z.
+    awk '{ print $0, ($1 < 0 ? 12 : 30), ($2 < 0 ? 0.0625 : 0.09375), ($3 < 0 ? 3 : 0), 12.5 }' "$kitten"; } > col.ply
+  run normals col.ply k.ply --k kk --ascii -q || fail "normals --k kk failed"
+  run normals col.ply k12.ply --k 12 --ascii -q && run normals col.ply k30.ply --k 30 --ascii -q || fail "normals --k N failed"
+  same_per_point k.ply 4 12 k12.ply 30 k30.ply || fail "--k kk: a point differs from the run at its k"
+  run normals col.ply r.ply --radius rr --k 0 --ascii -q || fail "normals --radius rr failed"
+  run normals col.ply r1.ply --radius 0.0625 --k 0 --ascii -q && run normals col.ply r2.ply --radius 0.09375 --k 0 --ascii -q ||
+    fail "normals --radius R failed"
+  same_per_point r.ply 5 0.0625 r1.ply 0.09375 r2.ply || fail "--radius rr: a point differs from the run at its radius"
+  run curvature col.ply o.ply --order oo --ascii -q || fail "curvature --order oo failed"
+  run curvature col.ply o3.ply --order 3 --ascii -q && run curvature col.ply o2.ply --ascii -q || fail "curvature --order K failed"
+  same_per_point o.ply 6 3 o3.ply 0 o2.ply || fail "--order oo: a point differs from the run at its order"
+  run enhance-positions col.ply e.ply --k kk --order oo --radius rr -q > /dev/null || fail "enhance-positions with three columns failed"
+  expect_error "nope" out.ply -- normals col.ply out.ply --k nope
+  expect_error "half" out.ply -- normals col.ply out.ply --k half
+  expect_error "--k" out.ply -- normals col.ply out.ply --k kk --tile-size 1000
+  expect_error "--k auto" out.ply -- normals col.ply out.ply --k auto --order oo
+  awk 'NR == 11 { $0 = "property float zr" } { print }' col.ply | sed 's/ 0.0625 / 0 /' > zero.ply
+  expect_error "zr" out.ply -- normals zero.ply out.ply --radius zr
 }
 
 cli_case_streamed_write_in_parts() {
