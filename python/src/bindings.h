@@ -86,29 +86,21 @@ typedef Output_map<double> Scalar_map;
 typedef Output_map<bool> Flag_map;
 typedef Output_map<unsigned int, std::int64_t> Count_output_map;   // wavejet_estimate_scales' sizes
 
-/// One unsigned value per point read from a buffer of N (a per-point k or order), or 0 for every
-/// point when the buffer is null (0 stands for the function's k or order: no per-point value).
-struct Count_map
+/// One value per point read from a buffer of N (a per-point k, order or radius), or 0 for every
+/// point when the buffer is null (0 stands for the function's k, order or neighbor_radius: no
+/// per-point value).
+template <class T, class Stored = T>
+struct Per_point_map
 {
   typedef std::size_t key_type;
-  typedef unsigned int value_type;
-  typedef unsigned int reference;
+  typedef T value_type;
+  typedef T reference;
   typedef boost::readable_property_map_tag category;
-  const std::uint32_t* in;
-  friend unsigned int get(const Count_map& m, std::size_t i) { return m.in ? m.in[i] : 0u; }
+  const Stored* in;
+  friend T get(const Per_point_map& m, std::size_t i) { return m.in ? T(m.in[i]) : T(0); }
 };
-
-/// One radius per point read from a buffer of N, or 0 for every point when the buffer is null (0
-/// stands for the function's neighbor_radius: no per-point value).
-struct Radius_map
-{
-  typedef std::size_t key_type;
-  typedef double value_type;
-  typedef double reference;
-  typedef boost::readable_property_map_tag category;
-  const double* in;
-  friend double get(const Radius_map& m, std::size_t i) { return m.in ? m.in[i] : 0.; }
-};
+typedef Per_point_map<unsigned int, std::uint32_t> Count_map;
+typedef Per_point_map<double> Radius_map;
 
 /// Rows of a buffer of N x `columns` doubles, written from a `std::vector<double>` of that size (the
 /// per-point values of a ladder of sizes).
