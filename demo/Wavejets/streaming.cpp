@@ -258,7 +258,8 @@ class Record_stream
 public:
   Record_stream(Scratch_file& file, std::size_t bytes, std::uint64_t first, std::uint64_t end, std::size_t buffered = 1 << 14)
     : file_(file), bytes_(bytes), next_(first), end_(end), buffer_(buffered * bytes) {}
-  bool done() const { return next_ == end_ && at_ == size_; }
+  // Every record was taken: none is left in the file or the buffer, nor peeked and not taken yet.
+  bool done() const { return !loaded_ && next_ == end_ && at_ == size_; }
   const Result& peek() { fill(); return current_; }
   const Result& take() { fill(); loaded_ = false; return current_; }
   void put(const void* r)
@@ -952,16 +953,28 @@ public:
       streams_.emplace_back(new Record_stream(*run.file, bytes, lo, run.end, buffered));
     }
   }
+  // Every index of the window has exactly one record in the runs: a missing or repeated one is a
+  // defect of the run, reported rather than written (a missing record would be written as zeros).
   void next(std::uint64_t first, std::vector<Result>& out)
   {
+    std::size_t filled = 0;
+    filled_.assign(out.size(), 0);
     for(auto& s : streams_)
       while(!s->done() && s->peek().record.index < first + out.size()) {
         const Result& r = s->take();
-        out[std::size_t(r.record.index - first)] = r;
+        const std::uint64_t at = r.record.index - first;
+        if(r.record.index < first || filled_[at]) throw std::logic_error("streamed run: a pass's records are out of index order");
+        out[std::size_t(at)] = r;
+        filled_[at] = 1;
+        ++filled;
       }
+    if(filled != out.size())
+      throw std::logic_error("streamed run: " + std::to_string(filled) + " records for the " + std::to_string(out.size()) +
+                             " points from index " + std::to_string(first));
   }
 private:
   std::vector<std::unique_ptr<Record_stream> > streams_;
+  std::vector<unsigned char> filled_;   // of the window: 1 where a record was found
 };
 
 // ------------------------------------------------------------------------------------------------
@@ -1086,8 +1099,8 @@ private:
 
 // Writes the vertices [first, end) of OUT (as `layout` says) at `offset` of `out`: IN read again
 // from vertex `first` (0 unless IN is a binary PLY), each vertex with its record's values.
-// `progress` gets the fraction written.
-void write_vertices(const std::string& in_path, std::uint64_t first, std::uint64_t end, const Output_layout& layout,
+// `progress` gets the fraction written. Returns how many of them have `fitted` 1 in OUT.
+std::uint64_t write_vertices(const std::string& in_path, std::uint64_t first, std::uint64_t end, const Output_layout& layout,
                     const Record_file& records, const Fit_settings& s, const Streaming_settings& settings, bool had_normals,
                     Scratch_file& out, std::uint64_t offset, const std::function<void(double)>& progress)
 {
@@ -1102,6 +1115,7 @@ void write_vertices(const std::string& in_path, std::uint64_t first, std::uint64
   std::vector<Result> values;
   std::vector<double> in;
   std::string bytes, direct_bytes;
+  std::uint64_t fitted = 0;
   while(at < end) {
     const std::size_t wanted = std::size_t(std::min<std::uint64_t>(chunk_points, end - at));
     bytes.clear();
@@ -1132,6 +1146,7 @@ void write_vertices(const std::string& in_path, std::uint64_t first, std::uint64
     out.write(bytes.data(), bytes.size(), offset);
     offset += bytes.size();
     at += values.size();
+    for(const Result& v : values) fitted += (unsigned char)(v.record.fitted) != 0;
     progress(double(at - first) / double(end - first));
   }
   bool more = false;
@@ -1140,6 +1155,28 @@ void write_vertices(const std::string& in_path, std::uint64_t first, std::uint64
   if(at != end || more)
     throw File_error(in_path + ": changed while it was read (" + (more ? "more than " : "") + std::to_string(at) + " points read again, " +
                      std::to_string(end) + " before)");
+  return fitted;
+}
+
+// The report whose points make OUT's `fitted` column: the command's, or for normals of a point set
+// without normals the estimation's.
+const std::optional<CGAL::Wavejets::Processing_report>& fitted_column_report(const Streamed_run& log)
+{
+  return log.command ? log.command : log.bare_normals;
+}
+
+// The summary's counts are those of OUT: its `fitted` column, counted as written, must be what the
+// library reported for the tiles; else the run is a defect, reported before OUT is written.
+void check_written_counts(Streamed_run& log, std::uint64_t written_fitted)
+{
+  log.written_fitted = written_fitted;
+  const std::optional<CGAL::Wavejets::Processing_report>& r = fitted_column_report(log);
+  const std::uint64_t reported = r ? r->number_of_fitted_points + r->number_of_unfitted_points : 0;
+  if(!r || r->number_of_fitted_points != written_fitted || reported != log.points)
+    throw std::logic_error("streamed run: OUT would hold " + std::to_string(written_fitted) + " fitted points of " +
+                           std::to_string(log.points) + " while the tiles reported " +
+                           (r ? std::to_string(r->number_of_fitted_points) + " of " + std::to_string(reported) : std::string("none")) +
+                           " (a defect of the streamed run: OUT is not written)");
 }
 
 } // namespace
@@ -1192,13 +1229,14 @@ void write_output(const std::string& in_path, const std::string& out_path, const
                             ? std::size_t(std::max<std::uint64_t>(1, std::min<std::uint64_t>(threads_allowed(), n / chunk_points))) : 1;
     auto part = [&](std::size_t p, const std::function<void(double)>& part_progress) {
       const std::uint64_t first = n * p / parts, end = n * (p + 1) / parts;
-      write_vertices(in_path, first, end, layout, records, s, settings, log.had_normals, *file,
-                     layout.header.size() + first * layout.vertex_bytes, part_progress);
+      return write_vertices(in_path, first, end, layout, records, s, settings, log.had_normals, *file,
+                            layout.header.size() + first * layout.vertex_bytes, part_progress);
     };
-    std::vector<std::future<void> > others;
+    std::vector<std::future<std::uint64_t> > others;
     for(std::size_t p = 1; p < parts; ++p) others.push_back(std::async(std::launch::async, part, p, [](double) {}));
-    part(0, [&](double x) { progress(0.9 + 0.1 * x); });   // the parts progress alike
-    for(std::future<void>& f : others) f.get();
+    std::uint64_t fitted = part(0, [&](double x) { progress(0.9 + 0.1 * x); });   // the parts progress alike
+    for(std::future<std::uint64_t>& f : others) fitted += f.get();
+    check_written_counts(log, fitted);
   }
   out.commit();
   log.write_seconds = seconds_since(tw);
@@ -1412,9 +1450,9 @@ void staged_write_part(const std::string& in_path, const std::string& job, std::
     const Output_layout layout = output_layout(in_path, s, settings, log.had_normals, log.points);
     const std::uint64_t first = layout.points * part / parts, end = layout.points * (part + 1) / parts;
     const std::unique_ptr<Scratch_file> out(Scratch_file::open_named(job_path(job, "output"), true));
-    write_vertices(in_path, first, end, layout, records, s, settings, log.had_normals, *out,
-                   layout.header.size() + first * layout.vertex_bytes, [](double) {});
-    write_whole_file(output_part_path(job, part, parts), "");
+    const std::uint64_t fitted = write_vertices(in_path, first, end, layout, records, s, settings, log.had_normals, *out,
+                                                layout.header.size() + first * layout.vertex_bytes, [](double) {});
+    write_whole_file(output_part_path(job, part, parts), std::to_string(fitted));   // the part's fitted points
     return 0;
   });
 }
@@ -1427,8 +1465,14 @@ Streamed_run staged_finish(const std::string& in_path, const std::string& out_pa
     last_results(job, s, log);   // the tiles' reports
     const Output_layout layout = output_layout(in_path, s, settings, log.had_normals, log.points);
     log.columns = layout.columns;
-    for(std::size_t p = 0; p < parts; ++p)
-      if(!std::ifstream(output_part_path(job, p, parts))) throw std::runtime_error("part " + std::to_string(p) + " of " + std::to_string(parts) + " of the output is not written");
+    std::uint64_t fitted = 0;
+    for(std::size_t p = 0; p < parts; ++p) {
+      std::ifstream marker(output_part_path(job, p, parts));
+      std::uint64_t part_fitted = 0;
+      if(!(marker >> part_fitted)) throw std::runtime_error("part " + std::to_string(p) + " of " + std::to_string(parts) + " of the output is not written");
+      fitted += part_fitted;
+    }
+    check_written_counts(log, fitted);
     const std::string written = job_path(job, "output");
     {
       const std::unique_ptr<Scratch_file> out(Scratch_file::open_named(written));

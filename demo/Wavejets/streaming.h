@@ -27,6 +27,7 @@ struct Streamed_run
   bool had_normals = false;
   std::size_t tiles = 0;           // tiles of the command's pass
   std::size_t rerun_points = 0;    // points fitted again with a larger halo, over every pass
+  std::uint64_t written_fitted = 0; // points written with `fitted` 1 (the tiles' reports must agree)
   std::optional<CGAL::Wavejets::Processing_report> bare_normals, command, result_normals;
   double scan_seconds = 0., binning_seconds = 0., fit_seconds = 0., write_seconds = 0.;
   std::vector<std::string> columns; // the output's PLY properties, in order

@@ -121,6 +121,7 @@ const Flag_info flags[] = {
   {"--orient-toward", "X,Y,Z", FITS, "a point set without normals: orient the estimated normals toward this viewpoint (a scan's scanner position; on a closed object seen from one point the far side points inward), instead of by a minimum spanning tree; needed to stream such a point set"},
   {"--max-memory", "SIZE", FITS, "stream a point set larger than memory (PLY or XYZ): process it in spatial tiles sized for about SIZE of memory (e.g. 2G, 500M); the output is the same, byte for byte"},
   {"--tile-size", "N", FITS, "stream in tiles of at most N points (instead of --max-memory)"},
+  {"--verify", "", FITS, "with --max-memory or --tile-size: also run the command in memory (it needs the memory of an in-memory run) and write OUT only if both give the same bytes"},
   {"--job", "DIR", FITS, "run one step of a streamed run (--stage), sharing the folder DIR with the other steps: how python3 -m wavejets.distributed spreads a run over processes or machines"},
   {"--stage", "STEP", FITS, "with --job: prepare (read IN, bin the first pass), tile:P:T (tile T of pass P), bin:P (bin pass P from pass P-1's tiles), write (OUT from the last pass's tiles), or write:C:N (part C of N of OUT's vertices; binary output of a binary PLY) then finish:N (OUT from the N parts)"},
   {"--threads", "N", FITS | RENDER, "worker threads (default: all cores; 1: sequential, same results)"},
@@ -232,6 +233,7 @@ struct Options
   double max_displacement = 0.;          // infinity: no clamp
   int threads = 0;
   bool ascii = false, quiet = false, compare = false, along_input_normals = false;
+  bool verify = false;                     // a streamed run compared with the in-memory one
   std::optional<bool> consistent_normals;             // not given: on for a mesh (normals from its faces), off for a point set
   std::optional<std::array<double, 3> > viewpoint;   // --orient-toward
   double max_memory = 0.;                  // bytes, 0: not given
@@ -391,6 +393,7 @@ Options parse_command_line(const std::vector<std::string>& args)
     else if(a == "--job") o.job = value;
     else if(a == "--stage") o.stage = value;
     else if(a == "--ascii") o.ascii = true;
+    else if(a == "--verify") o.verify = true;
     else if(a == "--along-input-normals") o.along_input_normals = true;
     else if(a == "--consistent-normals") o.consistent_normals = true;
     else if(a == "--all-neighbors") o.consistent_normals = false;
@@ -768,9 +771,9 @@ std::string streamed_summary(const Options& o, const wavejets_demo::Fit_settings
     t << "Reading and checking took " << run.scan_seconds << " s, binning " << run.binning_seconds << " s, fitting "
       << run.fit_seconds << " s, writing " << run.write_seconds << " s. ";
   t << "Wrote " << o.files[1] << " (" << (o.ascii ? "ASCII" : "binary little-endian") << " PLY, " << run.points
-    << " points in input order, properties: x y z";
+    << " points in input order, " << run.written_fitted << " of them fitted, properties: x y z";
   for(const std::string& p : run.columns) t << " " << p;
-  t << ", the same bytes as in memory)";
+  t << (o.verify ? "; verified: the same bytes as the in-memory run)" : ")");
   if(o.job.empty()) t << "; total " << seconds << " s";
   t << ".";
   return t.str();
@@ -812,6 +815,9 @@ int run_stage(const Options& o, const wavejets_demo::Fit_settings& s, const wave
   return EXIT_SUCCESS;
 }
 
+void compare_with_in_memory_run(const Options& o, const std::string& streamed, Progress& progress);
+int run_fit_command_on_input(const Options& o, Progress& progress);
+
 // A streamed run (--max-memory, --tile-size): a point set read in passes and fitted tile by tile;
 // the same output file as in memory.
 int run_streamed_command(const Options& o, Progress& progress)
@@ -834,11 +840,54 @@ int run_streamed_command(const Options& o, Progress& progress)
   settings.tile_size = o.tile_size > 0 ? o.tile_size : wavejets_demo::tile_size_for_memory(o.max_memory > 0 ? o.max_memory : 2e9);
   settings.ascii = o.ascii;
   settings.comment = output_comment(o);
-  if(!o.job.empty()) return run_stage(o, s, settings, n, order, progress);
-  const wavejets_demo::Streamed_run run = wavejets_demo::run_streamed(in_path, out_path, s, settings, progress.stage("streaming"));
+  if(!o.job.empty()) {
+    if(o.verify) throw Usage_error("--verify compares a whole streamed run: not with --job");
+    return run_stage(o, s, settings, n, order, progress);
+  }
+  if(!o.verify) {
+    const wavejets_demo::Streamed_run run = wavejets_demo::run_streamed(in_path, out_path, s, settings, progress.stage("streaming"));
+    progress.done();
+    if(!o.quiet) std::cout << streamed_summary(o, s, settings, n, order, run, seconds_since(t0)) << std::endl;
+    return EXIT_SUCCESS;
+  }
+  // --verify: the streamed output under a temporary name, moved to OUT once the in-memory run wrote the same bytes.
+  wavejets_demo::Output_file verified(out_path);
+  const wavejets_demo::Streamed_run run =
+    wavejets_demo::run_streamed(in_path, verified.temporary_path(), s, settings, progress.stage("streaming"));
   progress.done();
+  compare_with_in_memory_run(o, verified.temporary_path(), progress);
+  verified.commit();
   if(!o.quiet) std::cout << streamed_summary(o, s, settings, n, order, run, seconds_since(t0)) << std::endl;
   return EXIT_SUCCESS;
+}
+
+// --verify: runs the command of `o` in memory into a scratch file next to OUT and compares it with
+// `streamed`, the streamed run's output; a difference is an error naming its first byte.
+void compare_with_in_memory_run(const Options& o, const std::string& streamed, Progress& progress)
+{
+  Options in_memory = o;
+  in_memory.max_memory = 0;
+  in_memory.tile_size = 0;
+  in_memory.verify = false;
+  in_memory.quiet = true;
+  // A free name next to OUT, ending in .ply as the in-memory writer needs; removed when this returns.
+  const wavejets_demo::Output_file free_name(o.files[1]);
+  in_memory.files[1] = free_name.temporary_path() + ".ply";
+  struct Remove { const std::string& path; ~Remove() { std::remove(path.c_str()); } } remove_reference{in_memory.files[1]};
+  run_fit_command_on_input(in_memory, progress);
+  std::ifstream a(streamed, std::ios::binary), b(in_memory.files[1], std::ios::binary);
+  std::vector<char> x(1 << 20), y(1 << 20);
+  for(std::uint64_t at = 0;;) {
+    a.read(x.data(), std::streamsize(x.size()));
+    b.read(y.data(), std::streamsize(y.size()));
+    const std::size_t n = std::size_t(a.gcount()), m = std::size_t(b.gcount());
+    const std::size_t same = std::size_t(std::mismatch(x.begin(), x.begin() + std::ptrdiff_t(std::min(n, m)), y.begin()).first - x.begin());
+    if(same < std::min(n, m) || n != m)
+      throw File_error(o.files[1] + ": not written: the streamed output differs from the in-memory run from byte " +
+                       std::to_string(at + same) + " on (a defect of the streamed run; please report it with the command)");
+    if(n == 0) return;
+    at += n;
+  }
 }
 
 int run_fit_command_on_input(const Options& o, Progress& progress)
