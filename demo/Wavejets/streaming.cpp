@@ -32,6 +32,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstddef>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <future>
@@ -47,8 +48,15 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-// Chunks of at most this many points are read and written at a time.
-const std::size_t chunk_points = 1 << 16;
+// Chunks of at most this many points are read and written at a time: 65,536, or the environment's
+// WAVEJETS_CHUNK_POINTS (a test's knob: any size gives the same output, and small ones put chunk
+// boundaries into small inputs).
+std::size_t chunk_points()
+{
+  const char* v = std::getenv("WAVEJETS_CHUNK_POINTS");
+  const long long n = v ? std::atoll(v) : 0;
+  return n > 0 ? std::size_t(n) : std::size_t(1) << 16;
+}
 
 bool machine_is_little_endian()
 {
@@ -625,7 +633,7 @@ private:
       Input_chunks chunks(in.input);
       std::vector<double> v;
       std::uint64_t index = 0;
-      while(chunks.next_values(v, chunk_points))
+      while(chunks.next_values(v, chunk_points()))
         for(std::size_t i = 0; i < v.size(); i += 6) f(input_record(index++, &v[i], &v[i + 3]));
       if(index != in.count)
         throw File_error(in.input + ": changed while it was read (" + std::to_string(index) + " points read again, " + std::to_string(in.count) + " before)");
@@ -898,11 +906,11 @@ Record_file scan(const std::string& in_path, const std::shared_ptr<Scratch_file>
   if(chunks.reads_directly()) {
     f.input = in_path;   // read again by the binning, not copied
     std::vector<double> v;
-    while(chunks.next_values(v, chunk_points))
+    while(chunks.next_values(v, chunk_points()))
       for(std::size_t i = 0; i < v.size(); i += 6) add(v[i], v[i + 1], v[i + 2], chunks.has_normals() ? &v[i + 3] : nullptr);
   } else {
     Point_set chunk;
-    while(chunks.next(chunk, chunk_points))
+    while(chunks.next(chunk, chunk_points()))
       for(Point_set::Index i : chunk) {
         const Point& p = chunk.point(i);
         const Vector n = chunk.has_normal_map() ? chunk.normal(i) : CGAL::NULL_VECTOR;
@@ -1117,7 +1125,7 @@ std::uint64_t write_vertices(const std::string& in_path, std::uint64_t first, st
   std::string bytes, direct_bytes;
   std::uint64_t fitted = 0;
   while(at < end) {
-    const std::size_t wanted = std::size_t(std::min<std::uint64_t>(chunk_points, end - at));
+    const std::size_t wanted = std::size_t(std::min<std::uint64_t>(chunk_points(), end - at));
     bytes.clear();
     if(direct && checked) {
       if(!chunks.next_values(in, wanted)) break;
@@ -1151,7 +1159,7 @@ std::uint64_t write_vertices(const std::string& in_path, std::uint64_t first, st
   }
   bool more = false;
   if(at == end && end == layout.points)
-    while(!more && chunks.next(chunk, chunk_points)) more = !chunk.empty();
+    while(!more && chunks.next(chunk, chunk_points())) more = !chunk.empty();
   if(at != end || more)
     throw File_error(in_path + ": changed while it was read (" + (more ? "more than " : "") + std::to_string(at) + " points read again, " +
                      std::to_string(end) + " before)");
@@ -1226,7 +1234,7 @@ void write_output(const std::string& in_path, const std::string& out_path, const
     file->write(layout.header.data(), layout.header.size(), 0);
     const std::uint64_t n = log.points;
     const std::size_t parts = writes_in_parts(in_path, settings)
-                            ? std::size_t(std::max<std::uint64_t>(1, std::min<std::uint64_t>(threads_allowed(), n / chunk_points))) : 1;
+                            ? std::size_t(std::max<std::uint64_t>(1, std::min<std::uint64_t>(threads_allowed(), n / chunk_points()))) : 1;
     auto part = [&](std::size_t p, const std::function<void(double)>& part_progress) {
       const std::uint64_t first = n * p / parts, end = n * (p + 1) / parts;
       return write_vertices(in_path, first, end, layout, records, s, settings, log.had_normals, *file,
