@@ -391,7 +391,14 @@ cli_case_streamed_identical() {
   # --max-memory: one tile here; the summary says how the run went.
   "$wj" curvature "$kitten" mm.ply --max-memory 1G > summary.txt || fail "--max-memory run failed"
   cmp -s mm.ply in_kitten_curvature.ply || fail "--max-memory output differs from the in-core one"
-  grep -q "the same bytes as in memory" summary.txt || fail "no streamed summary: $(cat summary.txt)"
+  grep -q "5210 points in input order, 5210 of them fitted" summary.txt || fail "no streamed summary: $(cat summary.txt)"
+  grep -q "the same bytes" summary.txt && fail "the summary claims the same bytes unchecked: $(cat summary.txt)"
+  # --verify: the in-memory run too, and the claim only then.
+  "$wj" curvature "$kitten" verified.ply --tile-size 700 --verify > summary.txt || fail "--verify run failed"
+  cmp -s verified.ply in_kitten_curvature.ply || fail "--verify output differs from the in-core one"
+  grep -q "verified: the same bytes as the in-memory run" summary.txt || fail "no verified summary: $(cat summary.txt)"
+  ls -a | grep -q '\.tmp-' && fail "--verify left a temporary file: $(ls -a)"
+  expect_error --verify out.ply -- curvature "$kitten" out.ply --verify --job job --stage prepare
 }
 
 cli_case_auto_scales() {
