@@ -5,7 +5,7 @@
 #
 # By default, one leg: g++ + Debian's CGAL 5.5, Release, benchmarks built too (the inner loop of a
 # change). With CI=true (as .ci/run sets it) or WAVEJETS_FULL_MATRIX=1, the whole build matrix:
-#   1. g++     + CGAL 5.5 (Debian)  Release, benchmarks and the Python module (its pytest suite and
+#   1. g++     + CGAL 5.5 (Debian 12's package; on a newer Debian, that package unpacked)  Release, benchmarks and the Python module (its pytest suite and
 #      examples) built too
 #   2. clang++ + CGAL 6.1.1         Release, the Python module built too (the benchmarks, not part of
 #      the package, are built in leg 1 only); its results of every public function are compared
@@ -80,9 +80,29 @@ find_cgal6() {
   echo "$unpacked"
 }
 
+# CGAL 5.5 for legs 1 and 3: Debian's package where it is 5.5 (Debian 12), else the Debian 12 package
+# kept beside the clone (WAVEJETS_CGAL55_DEB, default ../shared/deps/libcgal-dev_5.5.1-2_amd64.deb;
+# header-only, unpacked into build/deps with dpkg-deb -x). Sets cgal55_version and cgal55_args.
+cgal55_args=()
+debian_cgal=$(dpkg-query -W -f='${Version}' libcgal-dev 2>/dev/null | cut -d- -f1)
+if [[ "$debian_cgal" == 5.5* ]]; then
+  cgal55_version="$debian_cgal (Debian's package)"
+else
+  deb="${WAVEJETS_CGAL55_DEB:-$root/../shared/deps/libcgal-dev_5.5.1-2_amd64.deb}"
+  if [ ! -f "$deb" ]; then
+    echo "Debian's CGAL is ${debian_cgal:-missing}, and $deb (CGAL 5.5.1) is not at hand: legs 1 and 3 need CGAL 5.5" >&2
+    exit 1
+  fi
+  unpacked="$root/build/deps/cgal-5.5.1"
+  [ -f "$unpacked/usr/lib/x86_64-linux-gnu/cmake/CGAL/CGALConfig.cmake" ] || { mkdir -p "$unpacked" && dpkg-deb -x "$deb" "$unpacked"; }
+  cgal55_args=(-DCGAL_DIR="$unpacked/usr/lib/x86_64-linux-gnu/cmake/CGAL")
+  cgal55_version="5.5.1 (unpacked from $(basename "$deb"); Debian's is $debian_cgal)"
+fi
+
 gcc_build=${WAVEJETS_TEST_BUILD_DIR:-build/test}
-run_leg "1. g++ + CGAL $(dpkg-query -W -f='${Version}' libcgal-dev 2>/dev/null | cut -d- -f1), Release" "$gcc_build" \
-  -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=g++ -DWAVEJETS_BUILD_BENCHMARKS=ON -DWAVEJETS_REQUIRE_PYTHON=ON
+run_leg "1. g++ + CGAL $cgal55_version, Release" "$gcc_build" \
+  -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=g++ -DWAVEJETS_BUILD_BENCHMARKS=ON -DWAVEJETS_REQUIRE_PYTHON=ON \
+  ${cgal55_args[@]+"${cgal55_args[@]}"}
 
 if [ $full_matrix = 0 ]; then
   echo
@@ -116,7 +136,8 @@ elif [ "${WAVEJETS_SKIP_SANITIZERS:-0}" != 1 ]; then
   export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1
   export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:suppressions=$root/scripts/ubsan_suppressions.txt"
   ctest_exclude="^(wavejets_headers_self_contained|wavejets_install_and_consume)$"
-  run_leg "3. clang++ + CGAL 5.5, ASan + UBSan (Debug -O1)" "${WAVEJETS_ASAN_BUILD_DIR:-build/asan}" \
+  run_leg "3. clang++ + CGAL $cgal55_version, ASan + UBSan (Debug -O1)" "${WAVEJETS_ASAN_BUILD_DIR:-build/asan}" \
+    ${cgal55_args[@]+"${cgal55_args[@]}"} \
     -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG=-gline-tables-only -DCMAKE_CXX_COMPILER=clang++ \
     -DWAVEJETS_TESTS_ONLY=OFF -DWAVEJETS_BUILD_BENCHMARKS=OFF \
     -DWAVEJETS_EXAMPLES=workflows -DWAVEJETS_BUILD_PYTHON=OFF \
